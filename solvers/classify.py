@@ -1,0 +1,126 @@
+"""Automatic labelling of wheel modes as (n, m, class), SPEC 3.1.
+
+* class: 'a' (axial) when the axial part of the kinetic energy dominates the
+  in-plane part; otherwise the in-plane motion of the tyre decides between
+  'r' (radial: inextensional ring bending, U_phi = -U_r / n, or breathing for
+  n = 0) and 'c' (circumferential: extensional/shear family, U_phi ~ n U_r,
+  or torsion for n = 0).
+* m: nodal circles, counted as sign changes of the dominant displacement
+  component along the web centreline from the hub to the tread, ignoring
+  samples below 10% of the largest (a clamped hub would otherwise add
+  spurious zeros).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+
+def nodal_weights(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
+    """Lumped r dA weight of each node (area/3 of each triangle times r)."""
+    p = points[cells]
+    area = 0.5 * np.abs((p[:, 1, 0] - p[:, 0, 0]) * (p[:, 2, 1] - p[:, 0, 1])
+                        - (p[:, 2, 0] - p[:, 0, 0]) * (p[:, 1, 1] - p[:, 0, 1]))
+    w = np.zeros(len(points))
+    np.add.at(w, cells.ravel(), np.repeat(area / 3, 3))
+    return w * points[:, 0]
+
+
+def energy_fractions(U: np.ndarray, weights: np.ndarray) -> np.ndarray:
+    """Fractions of sum(w |U_i|^2) in the components (U_r, U_z, U_phi)."""
+    e = (weights[:, None] * U**2).sum(axis=0)
+    return e / e.sum()
+
+
+def mode_class(U: np.ndarray, n: int, weights: np.ndarray, tyre: np.ndarray) -> str:
+    """'a', 'r' or 'c' from the mode shape U (nodes, 3) of harmonic n.
+    ``tyre`` is a boolean mask of the tyre nodes."""
+    fr, fz, fp = energy_fractions(U, weights)
+    if fz > fr + fp:
+        return "a"
+    ur, up = U[tyre, 0], U[tyre, 2]
+    w = weights[tyre]
+    if n == 0:
+        return "r" if (w * ur**2).sum() >= (w * up**2).sum() else "c"
+    bend = np.array([n, -1.0]) / np.hypot(n, 1.0)  # inextensional: U_r + n U_phi = 0
+    ext = np.array([1.0, n]) / np.hypot(n, 1.0)
+    q = np.column_stack([ur, up])
+    return "r" if (w * (q @ bend) ** 2).sum() >= (w * (q @ ext) ** 2).sum() else "c"
+
+
+def sign_changes(values: np.ndarray, floor: float = 0.03) -> int:
+    """Sign changes of a sampled function, ignoring |v| < floor max|v|."""
+    v = np.asarray(values, float)
+    big = np.abs(v) >= floor * np.max(np.abs(v)) if np.any(v) else np.zeros(len(v), bool)
+    s = np.sign(v[big])
+    return int(np.count_nonzero(s[1:] != s[:-1]))
+
+
+def nodal_circles(U_line: np.ndarray, cls: str) -> int:
+    """m from the shape sampled along the web centreline (samples, 3).
+    In-plane (r, c) modes count only strong sign changes (30% floor): their
+    web carries little motion near the hub and weak zeros there are not
+    nodal circles of the tyre motion that defines the family."""
+    comp = {"a": 1, "r": 0, "c": 2}[cls]
+    return sign_changes(U_line[:, comp], floor=0.03 if cls == "a" else 0.3)
+
+
+def order_nodal_circles(freqs, labels):
+    """Make m consistent within each (n, class) family: the modes of one
+    harmonic and class are ordered by nodal circles as frequency rises, so
+    a repeated or decreasing count (a zero lying exactly at the web-tyre
+    junction is easily missed) is replaced by the rank.  Returns the new
+    labels and a flag per mode telling whether the count was overridden."""
+    out = list(labels)
+    fixed = [False] * len(labels)
+    for cls in {c for _, c in labels}:
+        idx = [i for i in np.argsort(freqs) if labels[i][1] == cls]
+        counted = [labels[i][0] for i in idx]
+        if counted != sorted(set(counted)) or len(set(counted)) != len(counted):
+            for rank, i in enumerate(idx):
+                if labels[i][0] != rank:
+                    out[i] = (rank, cls)
+                    fixed[i] = True
+    return out, fixed
+
+
+class _Triangulation:
+    """Barycentric interpolation on a given triangle mesh (not Delaunay)."""
+
+    def __init__(self, points, cells):
+        self.points, self.cells = points, cells
+        p = points[cells]
+        self.T = np.stack([p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]], axis=2)  # (c, 2, 2)
+        self.Tinv = np.linalg.inv(self.T)
+        self.p0 = p[:, 0]
+
+    def locate(self, xy):
+        lam = np.einsum("cij,cj->ci", self.Tinv, xy[None, :] - self.p0)
+        l0 = 1 - lam.sum(axis=1)
+        bary = np.column_stack([l0, lam])
+        inside = np.all(bary >= -1e-9, axis=1)
+        if np.any(inside):
+            c = int(np.argmax(inside))
+            return c, bary[c]
+        return None, None
+
+    def interpolate(self, U, line):
+        out = np.zeros((len(line), U.shape[1]))
+        for i, xy in enumerate(np.asarray(line, float)):
+            c, b = self.locate(xy)
+            if c is None:
+                out[i] = U[np.argmin(np.linalg.norm(self.points - xy, axis=1))]
+            else:
+                out[i] = b @ U[self.cells[c]]
+        return out
+
+
+def classify_modes(points, cells, shapes, n, tyre_mask, web_line):
+    """Labels (m, class) for each shape of harmonic n."""
+    w = nodal_weights(points, cells)
+    tri = _Triangulation(points, cells)
+    labels = []
+    for U in shapes:
+        cls = mode_class(U, n, w, tyre_mask)
+        m = nodal_circles(tri.interpolate(U, web_line), cls)
+        labels.append((m, cls))
+    return labels
