@@ -99,7 +99,7 @@ def check_simple(poly: np.ndarray, key: str = "outline") -> None:
     seg_len = np.linalg.norm(np.roll(poly, -1, axis=0) - poly, axis=1)
     if np.any(seg_len < 1e-9):
         i = int(np.argmin(seg_len))
-        raise GeometryError(key, tuple(np.round(poly[i], 6)), "repeated vertex: outline edges must have non-zero length")
+        raise GeometryError(key, tuple(np.round(poly[i], 6)), "outline edges of non-zero length (repeated vertex)")
     a = poly
     b = np.roll(poly, -1, axis=0)
     for i in range(n):
@@ -110,7 +110,7 @@ def check_simple(poly: np.ndarray, key: str = "outline") -> None:
                 raise GeometryError(
                     key,
                     f"edges near r,z = {tuple(np.round(a[i], 4))} and {tuple(np.round(a[j], 4))}",
-                    "the cross-section outline intersects itself; check the dimensions",
+                    "a cross-section outline that does not intersect itself (check the dimensions)",
                 )
 
 

@@ -43,9 +43,9 @@ def tread_profile(p: dict, num: int = 24) -> dict:
     # root corner: face line meets the coned tread r = R0 - c y
     y_root = (R0 + 0.010 + y_face10 * tan_a - R0) / (tan_a - c)
     _require(y_b < y_top, "flange.thickness", fl["thickness"],
-             "too thin for the flange height and face angle (flange top lies behind its back face)")
-    _require(y_root < y_f - 0.01, "tyre.width", t["width"], "too narrow: the flange root reaches the field face")
-    _require(face_r(y_root) > r_in, "tyre.depth", t["depth"], "must leave material under the tread")
+             "a flange thick enough for its height and face angle (the flange top lies behind its back face)")
+    _require(y_root < y_f - 0.01, "tyre.width", t["width"], "a tyre wide enough that the flange root stays 10 mm from the field face")
+    _require(face_r(y_root) > r_in, "tyre.depth", t["depth"], "a depth that leaves material under the tread")
     tip = [np.array([y_b, R0 + h]), np.array([y_top, R0 + h])]
     root = np.array([y_root, R0 - c * y_root])
     field = np.array([y_f, R0 - c * y_f])
@@ -107,23 +107,23 @@ def check_wheel(p: dict) -> None:
     t, web, hub = p["tyre"], p["web"], p["hub"]
     R0 = t["rolling_radius"]
     r_in = R0 - t["depth"]
-    _require(R0 > 0, "tyre.rolling_radius", R0, "must be > 0")
+    _require(R0 > 0, "tyre.rolling_radius", R0, "a radius > 0")
     _require(0 < hub["bore_radius"] < hub["outer_radius"], "hub.bore_radius", hub["bore_radius"],
-             f"must satisfy 0 < bore_radius < hub.outer_radius = {hub['outer_radius']}")
+             f"0 < bore_radius < hub.outer_radius = {hub['outer_radius']}")
     _require(hub["outer_radius"] < r_in - 0.02, "hub.outer_radius", hub["outer_radius"],
-             f"must be at least 20 mm below the tyre inner radius {r_in:.4f} m")
+             f"a hub radius at least 20 mm below the tyre inner radius {r_in:.4f} m")
     hub_w = hub["y_outboard"] - hub["y_inboard"]
-    _require(hub_w > 0, "hub.y_outboard", hub["y_outboard"], f"must be > hub.y_inboard = {hub['y_inboard']}")
+    _require(hub_w > 0, "hub.y_outboard", hub["y_outboard"], f"a value > hub.y_inboard = {hub['y_inboard']}")
     for k in ("thickness_hub", "thickness_tyre"):
-        _require(web[k] < hub_w, f"web.{k}", web[k], f"the web must be thinner than the hub width {hub_w:.4f} m")
-        _require(web[k] < t["width"], f"web.{k}", web[k], f"the web must be thinner than the tyre width {t['width']:.4f} m")
+        _require(web[k] < hub_w, f"web.{k}", web[k], f"a web thinner than the hub width {hub_w:.4f} m")
+        _require(web[k] < t["width"], f"web.{k}", web[k], f"a web thinner than the tyre width {t['width']:.4f} m")
     y_b, y_f = -t["back_offset"], t["width"] - t["back_offset"]
     half = web["thickness_tyre"] / 2 + web["fillet_tyre"]
     _require(y_b + half < web["y_tyre"] < y_f - half, "web.y_tyre", web["y_tyre"],
-             f"the web (with fillets) must meet the tyre between y = {y_b + half:.4f} and {y_f - half:.4f} m")
+             f"a web (with fillets) meeting the tyre between y = {y_b + half:.4f} and {y_f - half:.4f} m")
     half = web["thickness_hub"] / 2 + web["fillet_hub"]
     _require(hub["y_inboard"] + half < web["y_hub"] < hub["y_outboard"] - half, "web.y_hub", web["y_hub"],
-             f"the web (with fillets) must meet the hub between y = {hub['y_inboard'] + half:.4f} and "
+             f"a web (with fillets) meeting the hub between y = {hub['y_inboard'] + half:.4f} and "
              f"{hub['y_outboard'] - half:.4f} m")
 
 
@@ -183,14 +183,14 @@ def wheel_segments(p: dict) -> list[Segment]:
     else:
         ax = p["axle"]
         _require(ax["journal_radius"] < r_hub and ax["body_radius"] < r_hub, "axle.body_radius",
-                 ax["body_radius"], f"axle radii must be below hub.outer_radius = {r_hub}")
+                 ax["body_radius"], f"axle radii below hub.outer_radius = {r_hub}")
         z_hi = z_rc + hub["y_inboard"]
         z_ho = z_rc + hub["y_outboard"]
         z_end = ax["journal_end_z"]
         z_j0 = z_end - ax["journal_length"]
-        _require(z_hi > 0.05, "hub.y_inboard", hub["y_inboard"], "the hub must lie outboard of the wheelset centre")
+        _require(z_hi > 0.05, "hub.y_inboard", hub["y_inboard"], "a hub outboard of the wheelset centre")
         _require(z_j0 > z_ho + 0.005, "axle.journal_end_z", z_end,
-                 f"the journal (length {ax['journal_length']}) must start outboard of the hub face Z = {z_ho:.4f} m")
+                 f"a journal (length {ax['journal_length']}) starting outboard of the hub face Z = {z_ho:.4f} m")
         rb, rj = ax["body_radius"], ax["journal_radius"]
         sa = m["size_axle"]
         segs += [

@@ -1,0 +1,80 @@
+# Curve squeal pipeline: geometry -> wheel modes -> ... (see README).
+# `make` sets up the machine and runs the default case as far as the stages
+# exist; `make test` sets up and runs the test suite.  Select inputs with
+# WHEEL=<name> (geometry/wheels/<name>.toml).
+
+WHEEL ?= c20
+CASE  ?= default
+BUILD ?= build
+PY    := .venv/bin/python
+STAMP := .venv/.setup-stamp
+W     := $(BUILD)/wheels/$(WHEEL)
+export SQUEAL_BUILD_DIR := $(abspath $(BUILD))
+WFILE := geometry/wheels/$(WHEEL).toml
+export VTK_DEFAULT_OPENGL_WINDOW ?= vtkEGLRenderWindow
+export OMP_NUM_THREADS ?= 1
+
+GEOMETRY_SRC := geometry/wheel.py geometry/outline.py geometry/mesher.py
+MODES_SRC    := solvers/axisym.py solvers/classify.py solvers/wheelset.py pipeline/wheel_stage.py
+SHAPES_SRC   := postprocess/mode_shapes.py
+
+.DEFAULT_GOAL := all
+.PHONY: all help setup test validate bench mesh modes shapes check clean distclean
+.DELETE_ON_ERROR:
+
+all: modes ## run the default case as far as the stages exist (wheel mesh, modes, mode shapes)
+
+help: ## list the targets
+	@grep -hE '^[a-z][a-zA-Z_-]*:.*## ' $(MAKEFILE_LIST) | sed 's/:.*## /\t/' | awk -F'\t' '{printf "  %-10s %s\n", $$1, $$2}'
+	@echo "  variables: WHEEL=$(WHEEL) (available: $(notdir $(basename $(wildcard geometry/wheels/*.toml))))"
+
+# --- setup: Debian packages (once), then the venv (again when requirements change)
+.apt-stamp: debian-packages.txt
+	@missing=$$(for p in $$(grep -v '^#' debian-packages.txt); do dpkg -s $$p >/dev/null 2>&1 || echo $$p; done); \
+	if [ -n "$$missing" ]; then \
+	  echo "installing Debian packages: $$missing"; \
+	  SUDO=$$( [ "$$(id -u)" = 0 ] || echo sudo ); \
+	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq $$missing; \
+	fi
+	@touch $@
+
+$(STAMP): requirements.txt constraints.txt .apt-stamp
+	@test -x $(PY) || /usr/bin/python3 -m venv --system-site-packages .venv
+	$(PY) -m pip install -q --disable-pip-version-check -c constraints.txt -r requirements.txt
+	$(PY) -c "import dolfinx, slepc4py, gmsh, numba, pyvista, numpy; assert numpy.__version__.startswith('1.24'), numpy.__version__"
+	@touch $@
+
+setup: $(STAMP) ## install Debian packages and the Python venv (stamp files; reruns only when the lists change)
+
+check: | $(STAMP) ## validate the WHEEL and CASE files only
+	$(PY) -m pipeline check --wheel $(WHEEL) --case $(CASE)
+
+# --- wheel stages
+$(W)/mesh.json: $(WFILE) $(GEOMETRY_SRC) | $(STAMP)
+	$(PY) -m pipeline mesh --wheel $(WHEEL)
+
+$(W)/modes.npz: $(W)/mesh.json $(WFILE) $(MODES_SRC) | $(STAMP)
+	$(PY) -m pipeline modes --wheel $(WHEEL)
+
+$(W)/shapes/gallery.png: $(W)/modes.npz $(SHAPES_SRC) | $(STAMP)
+	$(PY) -m pipeline shapes --wheel $(WHEEL)
+
+mesh: $(W)/mesh.json ## Gmsh cross-section of WHEEL -> build/wheels/WHEEL/section.msh
+modes: $(W)/modes.npz $(W)/shapes/gallery.png ## wheel modes n = 0..N (dolfinx+SLEPc), mode table and 3D renders
+
+# --- quality
+test: | $(STAMP) ## run the test suite (fast; validation tests are skipped)
+	$(PY) -m pytest -q tests
+
+validate: | $(STAMP) ## run the slower validation suite and write docs/validation.md
+	$(PY) -m pytest -q --validation tests
+	$(PY) -m pipeline.docs validation
+
+bench: | $(STAMP) ## run the benchmarks and write docs/benchmarks.md
+	$(PY) -m benchmarks
+
+clean: ## remove build outputs (keeps the venv)
+	rm -rf $(BUILD) meshes/*.msh
+
+distclean: clean ## also remove the venv and setup stamps
+	rm -rf .venv .apt-stamp

@@ -1,0 +1,69 @@
+"""Command line: ``python -m pipeline <stage> [--wheel NAME] ...``.
+
+The Makefile calls these; each stage reads its inputs, writes its artifacts
+atomically and exits non-zero with a one-paragraph message on bad input.
+"""
+from __future__ import annotations
+
+import argparse
+import logging
+import sys
+
+STAGES = {
+    "mesh": "mesh the wheel cross-section (Gmsh) -> build/wheels/<wheel>/section.msh",
+    "modes": "wheel modes per Fourier harmonic (dolfinx + SLEPc), classified -> modes.npz, modes.csv",
+    "shapes": "offscreen 3D renders of every wheel mode and a gallery -> shapes/*.png",
+    "check": "validate the configuration files only (no computation)",
+}
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(prog="python -m pipeline", description="Curve squeal pipeline stages.",
+                                 formatter_class=argparse.RawDescriptionHelpFormatter,
+                                 epilog="stages:\n" + "\n".join(f"  {k:8s} {v}" for k, v in STAGES.items()))
+    ap.add_argument("stage", choices=list(STAGES))
+    ap.add_argument("--wheel", default="c20", help="wheel parameter file geometry/wheels/<name>.toml (default c20)")
+    ap.add_argument("--case", default="default", help="case file pipeline/cases/<name>.toml (default: default)")
+    ap.add_argument("--workers", type=int, default=None, help="processes for the harmonic solves (default: cores)")
+    ap.add_argument("-v", "--verbose", action="count", default=0, help="more logging (-vv for debug)")
+    ap.add_argument("-q", "--quiet", action="store_true", help="warnings and errors only")
+    args = ap.parse_args(argv)
+    level = logging.WARNING if args.quiet else (logging.INFO if args.verbose < 2 else logging.DEBUG)
+    logging.basicConfig(level=level, format="%(levelname)s %(name)s: %(message)s")
+
+    from .artifacts import ArtifactError
+    from .config import ConfigError
+
+    try:
+        if args.stage == "check":
+            from . import paths
+            from .config import load
+            from .schemas import CASE
+            from .wheel_stage import load_wheel
+
+            load_wheel(args.wheel)
+            case_path = paths.case_file(args.case)
+            if not case_path.exists():
+                raise ConfigError(str(case_path), detail=f"no such case; available: {paths.available(paths.CASES)}")
+            load(case_path, CASE)
+            print(f"wheel {args.wheel} and case {args.case}: configuration OK")
+        elif args.stage == "mesh":
+            from .wheel_stage import run_mesh
+
+            run_mesh(args.wheel)
+        elif args.stage == "modes":
+            from .wheel_stage import run_modes
+
+            run_modes(args.wheel, args.workers)
+        elif args.stage == "shapes":
+            from .wheel_stage import run_shapes
+
+            run_shapes(args.wheel)
+    except (ConfigError, ArtifactError) as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,118 @@
+"""Schemas of the TOML inputs (validated by ``pipeline.config``).
+
+Units are SI; the ranges are physical plausibility bounds for railway
+wheels, wide enough for tram to freight wheels and narrow enough to catch
+unit mistakes (mm typed for m, MPa for Pa).
+"""
+from __future__ import annotations
+
+from .config import Field
+
+L = dict(kind=float, unit="m")
+
+WHEEL = {
+    "name": Field(str, doc="short name, used in build paths"),
+    "description": Field(str, default=""),
+    "material": {
+        "E": Field(float, unit="Pa", min=50e9, max=400e9, doc="Young's modulus"),
+        "nu": Field(float, min=0.0, max=0.49, doc="Poisson's ratio"),
+        "rho": Field(float, unit="kg/m^3", min=1000.0, max=20000.0, doc="density"),
+    },
+    "tyre": {
+        "rolling_radius": Field(**L, min=0.15, max=0.7, min_inclusive=False, doc="nominal rolling radius"),
+        "width": Field(**L, min=0.05, max=0.2, doc="tyre width w, flange back to field face"),
+        "back_offset": Field(**L, min=0.03, max=0.12, doc="rolling circle from the flange back face"),
+        "depth": Field(**L, min=0.015, max=0.15, doc="radial depth of the tyre below the rolling circle"),
+        "conicity": Field(float, min=0.0, max=0.1, doc="tread slope (1:40 = 0.025)"),
+        "field_chamfer": Field(**L, min=0.0, max=0.02),
+    },
+    "flange": {
+        "height": Field(**L, min=0.015, max=0.045),
+        "thickness": Field(**L, min=0.015, max=0.045, doc="measured 10 mm above the rolling circle"),
+        "face_angle_deg": Field(float, unit="deg", min=45.0, max=85.0),
+        "root_radius": Field(**L, min=0.0, max=0.03),
+        "tip_radius": Field(**L, min=0.0, max=0.02),
+    },
+    "web": {
+        "thickness_tyre": Field(**L, min=0.008, max=0.12, doc="web thickness at the tyre"),
+        "thickness_hub": Field(**L, min=0.008, max=0.15, doc="web thickness at the hub"),
+        "y_tyre": Field(**L, min=-0.12, max=0.12, doc="web centre at the tyre, y^W"),
+        "y_hub": Field(**L, min=-0.25, max=0.25, doc="web centre at the hub, y^W"),
+        "bulge": Field(**L, min=-0.1, max=0.1, doc="lateral bulge of the web centreline (Bezier control offset)"),
+        "fillet_tyre": Field(**L, min=0.0, max=0.05),
+        "fillet_hub": Field(**L, min=0.0, max=0.06),
+    },
+    "hub": {
+        "outer_radius": Field(**L, min=0.05, max=0.3),
+        "bore_radius": Field(**L, min=0.03, max=0.15, min_inclusive=False),
+        "y_inboard": Field(**L, min=-0.35, max=0.2),
+        "y_outboard": Field(**L, min=-0.2, max=0.35),
+    },
+    "mount": {
+        "type": Field(str, choices=["clamped", "axle"], default="clamped",
+                      doc="'clamped': flexible wheel clamped at the bore plus the rigid half wheelset on the "
+                          "suspension; 'axle': half axle in the section, suspension springs at the journal"),
+        "midplane": Field(str, choices=["symmetric", "antisymmetric"], default="symmetric",
+                          doc="condition at the wheelset centre plane (axle mount)"),
+    },
+    "axle": {
+        "rolling_circle_z": Field(**L, min=0.4, max=1.0, default=0.75, doc="wheelset centre to rolling circle"),
+        "body_radius": Field(**L, min=0.03, max=0.15, default=0.08),
+        "journal_radius": Field(**L, min=0.03, max=0.15, default=0.065),
+        "journal_length": Field(**L, min=0.05, max=0.4, default=0.18),
+        "journal_end_z": Field(**L, min=0.6, max=1.5, default=1.08),
+    },
+    "suspension": {
+        "k_vertical": Field(float, unit="N/m", min=1e4, max=1e9, doc="primary vertical stiffness per axle box"),
+        "k_lateral": Field(float, unit="N/m", min=1e4, max=1e9, doc="primary lateral stiffness per axle box"),
+        "c_vertical": Field(float, unit="N s/m", min=0.0, max=1e6, doc="primary vertical damping per axle box"),
+        "c_lateral": Field(float, unit="N s/m", min=0.0, max=1e6, doc="primary lateral damping per axle box"),
+        "wheelset_mass": Field(float, unit="kg", min=100.0, max=5000.0, doc="whole wheelset"),
+        "wheelset_roll_inertia": Field(float, unit="kg m^2", min=10.0, max=5000.0,
+                                       doc="whole wheelset about the longitudinal axis through its centre"),
+        "box_half_spacing": Field(**L, min=0.5, max=1.5, doc="wheelset centre to axle-box spring, laterally"),
+    },
+    "modes": {
+        "f_max": Field(float, unit="Hz", min=100.0, max=20000.0, default=7000.0),
+        "n_max": Field(int, min=0, max=30, default=10),
+        "degree": Field(int, min=1, max=3, default=2, doc="Lagrange degree of the section elements"),
+    },
+    "mesh": {
+        "size_tread": Field(**L, min=0.0005, max=0.05),
+        "size_tyre": Field(**L, min=0.0005, max=0.05),
+        "size_web": Field(**L, min=0.0005, max=0.05),
+        "size_hub": Field(**L, min=0.0005, max=0.1),
+        "size_axle": Field(**L, min=0.001, max=0.1, default=0.02),
+    },
+}
+
+CASE = {
+    "name": Field(str),
+    "description": Field(str, default=""),
+    "wheel": Field(str, default="c20", doc="geometry/wheels/<wheel>.toml"),
+    "rail": Field(str, default="bv50", doc="geometry/rails/<rail>.toml"),
+    "contact": {
+        "dy_wr": Field(float, unit="m", choices=[-0.005, -0.010, -0.015],
+                       doc="wheelset lateral offset selecting the nominal contact point (SPEC 2)"),
+        "model": Field(str, choices=["point", "kalker"], default="point",
+                       doc="tangential contact: point-contact model with regularized friction, or Kalker's "
+                           "transient variational theory"),
+        "normal": Field(str, choices=["table", "norm"], default="table",
+                        doc="normal contact from a NORM table over the approach, or NORM every step"),
+    },
+    "friction": {
+        "mu": Field(float, min=0.0, max=1.0, min_inclusive=False, doc="Coulomb friction coefficient"),
+    },
+    "kinematics": {
+        "gamma_y": Field(float, min=-0.2, max=0.2, doc="lateral creepage"),
+        "gamma_x": Field(float, min=-0.2, max=0.2, default=0.0, doc="longitudinal creepage"),
+        "speed": Field(float, unit="m/s", min=0.5, max=60.0, doc="rolling speed v"),
+    },
+    "loading": {
+        "preload": Field(float, unit="N", min=1e3, max=3e5, doc="static wheel load F_L3"),
+    },
+    "time": {
+        "dt": Field(float, unit="s", min=1e-6, max=2e-4, doc="time step; dx = v dt"),
+        "duration": Field(float, unit="s", min=0.01, max=8.0, doc="at most this much rolling"),
+    },
+}

@@ -1,0 +1,118 @@
+"""Pipeline behaviour through its real entry points: the CLI and Make."""
+from __future__ import annotations
+
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+C20 = ROOT / "geometry" / "wheels" / "c20.toml"
+
+
+def cli(*args, env=None, **kw):
+    return subprocess.run([sys.executable, "-m", "pipeline", *args], cwd=ROOT, env=env, capture_output=True,
+                          text=True, **kw)
+
+
+def make(*args, build, timeout=600):
+    env = dict(os.environ)
+    return subprocess.run(["make", "--no-print-directory", f"BUILD={build}", *args], cwd=ROOT, env=env,
+                          capture_output=True, text=True, timeout=timeout)
+
+
+def _env(tmp_path, wheels):
+    env = dict(os.environ, SQUEAL_BUILD_DIR=str(tmp_path / "build"), SQUEAL_WHEEL_DIR=str(wheels))
+    return env
+
+
+@pytest.mark.parametrize("old,new,key,allowed", [
+    ("rolling_radius = 0.390", "rolling_radius = -0.39", "tyre.rolling_radius", "0.15 < value <= 0.7"),
+    ("rolling_radius = 0.390", 'rolling_radius = "big"', "tyre.rolling_radius", "a float"),
+    ("depth = 0.060\n", "", "tyre.depth", "required key is missing"),
+    # geometric consistency, checked before meshing: web thicker than the hub, bore outside the hub
+    ("y_outboard = 0.040", "y_outboard = -0.110", "web.thickness_hub", "a web thinner than the hub width"),
+    ("bore_radius = 0.0825", "bore_radius = 0.14", "hub.bore_radius", "bore_radius < hub.outer_radius"),
+])
+def test_invalid_wheel_is_named_and_writes_nothing(tmp_path, old, new, key, allowed):
+    wheels = tmp_path / "wheels"
+    wheels.mkdir()
+    text = C20.read_text()
+    assert old in text
+    (wheels / "bad.toml").write_text(text.replace(old, new, 1))
+    r = cli("mesh", "--wheel", "bad", env=_env(tmp_path, wheels))
+    assert r.returncode == 2
+    assert "bad.toml" in r.stderr and key in r.stderr and allowed in r.stderr, r.stderr
+    if new and new.startswith(key.split(".")[1]):
+        assert new.split("=")[1].strip().strip('"') in r.stderr
+    assert not (tmp_path / "build").exists() or not any((tmp_path / "build").rglob("*.*"))
+
+
+def test_invalid_case_friction_seven(tmp_path):
+    cases = tmp_path / "cases"
+    cases.mkdir()
+    text = (ROOT / "pipeline" / "cases" / "default.toml").read_text().replace("mu = 0.35", "mu = 7")
+    (cases / "bad.toml").write_text(text)
+    env = dict(os.environ, SQUEAL_CASE_DIR=str(cases), SQUEAL_BUILD_DIR=str(tmp_path / "build"))
+    r = cli("check", "--case", "bad", env=env)
+    assert r.returncode == 2
+    assert "bad.toml" in r.stderr and "friction.mu = 7" in r.stderr and "0 < value <= 1" in r.stderr
+    assert not (tmp_path / "build").exists()
+
+
+@pytest.fixture(scope="module")
+def built(tmp_path_factory):
+    """The c20 wheel stages built once by Make into a private build folder."""
+    build = tmp_path_factory.mktemp("build")
+    r = make("modes", build=build)
+    assert r.returncode == 0, r.stdout + r.stderr
+    return build
+
+
+def test_make_builds_wheel_artifacts(built):
+    w = built / "wheels" / "c20"
+    for f in ("section.msh", "mesh.json", "modes.npz", "modes.csv", "shapes/gallery.png"):
+        assert (w / f).exists(), f
+    header = (w / "modes.csv").read_text().splitlines()[0].split(",")
+    assert header[:4] == ["f_hz", "n", "m", "class"]
+
+
+def test_nothing_reruns_when_nothing_changed(built):
+    assert make("-q", "modes", build=built).returncode == 0
+
+
+def test_touching_wheel_file_rebuilds_only_wheel_stages(built):
+    # -W: 'what if this file were newer' (same as touch, without touching the tree)
+    r = make("-n", "-W", "geometry/wheels/c20.toml", "modes", build=built)
+    lines = [ln for ln in r.stdout.splitlines() if ln.strip()]
+    stages = [ln.split("-m pipeline ")[1].split()[0] for ln in lines if "-m pipeline " in ln]
+    assert stages == ["mesh", "modes", "shapes"], r.stdout
+    assert not any("pip install" in ln or "apt-get" in ln for ln in lines)
+
+
+def test_killed_stage_leaves_no_complete_artifact(built, tmp_path):
+    """SIGKILL the modes stage mid-run: no modes.npz appears, Make still
+    sees the target as out of date and the loader refuses."""
+    build = tmp_path / "b"
+    shutil.copytree(built / "wheels" / "c20", build / "wheels" / "c20")
+    target = build / "wheels" / "c20" / "modes.npz"
+    target.unlink()
+    env = dict(os.environ, SQUEAL_BUILD_DIR=str(build))
+    p = subprocess.Popen([sys.executable, "-m", "pipeline", "modes", "--wheel", "c20", "--workers", "1"],
+                         cwd=ROOT, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                         start_new_session=True)
+    time.sleep(4.0)  # inside the eigen solves
+    os.killpg(p.pid, signal.SIGKILL)
+    p.wait()
+    assert not target.exists()
+    assert make("-q", "modes", build=build).returncode != 0
+    sys.path.insert(0, str(ROOT))
+    from pipeline.artifacts import ArtifactError, load_npz
+
+    with pytest.raises(ArtifactError):
+        load_npz(target, "wheel-modes")

@@ -1,0 +1,1 @@
+"""Slow validation tests (run with ``pytest --validation``)."""
