@@ -22,6 +22,16 @@ def _require(cond: bool, key: str, value, allowed: str) -> None:
         raise GeometryError(key, value, allowed)
 
 
+def tyre_inner_radius(p: dict, y):
+    """Radius of the tyre's inner (web-side) surface at lateral position y:
+    depth ``tyre.depth`` below the rolling radius at the flange back,
+    ``tyre.depth_field`` at the field face, linear in between."""
+    t = p["tyre"]
+    y_b, y_f = -t["back_offset"], t["width"] - t["back_offset"]
+    d_f = t.get("depth_field") or t["depth"]
+    return t["rolling_radius"] - (t["depth"] + (d_f - t["depth"]) * (np.asarray(y) - y_b) / (y_f - y_b))
+
+
 def tread_profile(p: dict, num: int = 24) -> dict:
     """Running-surface profile of the tyre: the polyline (y^W, r) from the
     flange back face over the flange to the field face.  Returns the pieces
@@ -87,12 +97,16 @@ def _web_sides(p: dict, r_hub: float, r_in: float, num: int = 7):
     thick = w["thickness_hub"] + (w["thickness_tyre"] - w["thickness_hub"]) * s
     gauge = centre + normal * thick[:, None] / 2
     field = centre - normal * thick[:, None] / 2
-    # the end points must lie on the hub (r = r_hub) and the tyre inner surface (r = r_in)
+    # the end points must lie on the hub (r = r_hub) and on the tyre inner
+    # surface r = r_in(y) (linear in y): intersect the end segments with them
+    slope = float(tyre_inner_radius(p, 1.0) - tyre_inner_radius(p, 0.0))
+    r0 = float(tyre_inner_radius(p, 0.0))
     for side in (gauge, field):
-        for end, r_target in ((0, r_hub), (-1, r_in)):
-            nb = 1 if end == 0 else -2
-            d = side[end] - side[nb]
-            side[end] = side[nb] + d * (r_target - side[nb][1]) / d[1]
+        d = side[0] - side[1]
+        side[0] = side[1] + d * (r_hub - side[1][1]) / d[1]
+        a, d = side[-2], side[-1] - side[-2]
+        s_hit = (r0 + slope * a[0] - a[1]) / (d[1] - slope * d[0])
+        side[-1] = a + s_hit * d
     return gauge, field
 
 
@@ -106,7 +120,7 @@ def check_wheel(p: dict) -> None:
     """Dimension checks that make a valid section (before any meshing)."""
     t, web, hub = p["tyre"], p["web"], p["hub"]
     R0 = t["rolling_radius"]
-    r_in = R0 - t["depth"]
+    r_in = float(min(tyre_inner_radius(p, -t["back_offset"]), tyre_inner_radius(p, t["width"] - t["back_offset"])))
     _require(R0 > 0, "tyre.rolling_radius", R0, "a radius > 0")
     _require(0 < hub["bore_radius"] < hub["outer_radius"], "hub.bore_radius", hub["bore_radius"],
              f"0 < bore_radius < hub.outer_radius = {hub['outer_radius']}")
@@ -138,16 +152,16 @@ def wheel_segments(p: dict) -> list[Segment]:
     t, web, hub, m = p["tyre"], p["web"], p["hub"], p["mesh"]
     z_rc = p["axle"]["rolling_circle_z"]
     prof = tread_profile(p)
-    r_in, y_b, y_f = prof["r_inner"], prof["y_back"], prof["y_field"]
+    y_b, y_f = prof["y_back"], prof["y_field"]
     r_hub, r_bore = hub["outer_radius"], hub["bore_radius"]
-    gauge, field = _web_sides(p, r_hub, r_in)
+    gauge, field = _web_sides(p, r_hub, float(tyre_inner_radius(p, web["y_tyre"])))
     ft, fh = web["fillet_tyre"], web["fillet_hub"]
 
     # tyre inner surface and web sides with fillets, as (y, r) polylines
     hub_in = np.array([hub["y_inboard"], r_hub])
     hub_out = np.array([hub["y_outboard"], r_hub])
-    tyre_b = np.array([y_b, r_in])
-    tyre_f = np.array([y_f, r_in])
+    tyre_b = np.array([y_b, float(tyre_inner_radius(p, y_b))])
+    tyre_f = np.array([y_f, float(tyre_inner_radius(p, y_f))])
     g_hub = fillet(hub_in, gauge[0], gauge[1], fh, 6)
     g_tyre = fillet(gauge[-2], gauge[-1], tyre_b, ft, 6)
     f_tyre = fillet(tyre_f, field[-1], field[-2], ft, 6)
@@ -214,7 +228,7 @@ def web_centreline(p: dict, num: int = 40) -> np.ndarray:
     the tyre to the rolling radius: the line on which nodal circles are
     counted."""
     t, w, hub = p["tyre"], p["web"], p["hub"]
-    r_in = t["rolling_radius"] - t["depth"]
+    r_in = float(tyre_inner_radius(p, w["y_tyre"]))
     c0 = np.array([w["y_hub"], hub["outer_radius"]])
     c2 = np.array([w["y_tyre"], r_in])
     c1 = 0.5 * (c0 + c2) + np.array([w["bulge"], 0.0])
@@ -233,6 +247,6 @@ def surface_radii(p: dict) -> dict:
         "r": t["rolling_radius"],
         "w": t["width"],
         "w_web": 0.5 * (p["web"]["thickness_tyre"] + p["web"]["thickness_hub"]),
-        "r_in": t["rolling_radius"] - t["depth"],
+        "r_in": float(tyre_inner_radius(p, 0.5 * (t["width"] - 2 * t["back_offset"]))),
         "r_hub": p["hub"]["outer_radius"],
     }

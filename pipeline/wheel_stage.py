@@ -122,12 +122,11 @@ def solve_all(p: dict, names: dict, msh: str, workers: int | None = None, progre
 def modal_model(p: dict, results, pts, cells) -> dict:
     """Classify the flexible modes, add the rigid half wheelset, and pack
     the arrays of the modal artifact (sorted by frequency)."""
-    from geometry.wheel import web_centreline
+    from geometry.wheel import tyre_inner_radius, web_centreline
     from solvers.classify import classify_modes, order_nodal_circles
     from solvers.wheelset import rigid_modes
 
-    r_in = p["tyre"]["rolling_radius"] - p["tyre"]["depth"]
-    tyre = pts[:, 0] > r_in - 1e-9
+    tyre = pts[:, 0] > tyre_inner_radius(p, pts[:, 1] - p["axle"]["rolling_circle_z"]) - 1e-9
     line = web_centreline(p)
     rows = []
     for n, freqs, shapes, masses in results:
@@ -217,3 +216,25 @@ def run_shapes(name: str) -> None:
         labels.append(f"{lab} {a['f_hz'][i]:.1f} Hz")
     render_gallery(str(folder / "gallery.png"), images, labels, ncols=5)
     log.info("shapes %s: %d renders -> %s", name, len(images), folder)
+
+
+def modes_for_parameters(p: dict, workdir, workers: int | None = None) -> dict:
+    """Mesh and solve a wheel given as validated parameters, without touching
+    the build folder (for studies, validation and benchmarks)."""
+    from pathlib import Path
+
+    from geometry.mesher import mesh_section
+    from geometry.wheel import wheel_segments
+
+    msh = str(Path(workdir) / "section.msh")
+    names = mesh_section(wheel_segments(p), msh)
+    results, pts, cells = solve_all(p, names, msh, workers)
+    return modal_model(p, results, pts, cells)
+
+
+def reference_rows(path) -> list[tuple[float, int, int, str]]:
+    """(f_hz, n, m, class) rows of a reference mode table (CSV with a header)."""
+    import csv
+
+    with open(path, newline="") as fh:
+        return [(float(r["f_hz"]), int(r["n"]), int(r["m"]), r["class"]) for r in csv.DictReader(fh)]

@@ -1,7 +1,10 @@
 """Automatic labelling of wheel modes as (n, m, class), SPEC 3.1.
 
-* class: 'a' (axial) when the axial part of the kinetic energy dominates the
-  in-plane part; otherwise the in-plane motion of the tyre decides between
+* class: 'a' (axial) when the axial component carries the largest share of
+  the kinetic energy (plurality of U_r, U_z, U_phi: the asymmetric section
+  mixes axial and in-plane motion, and a mode whose axial share merely
+  exceeds each in-plane share is still called axial, as in the reference
+  labels); otherwise the in-plane motion of the tyre decides between
   'r' (radial: inextensional ring bending, U_phi = -U_r / n, or breathing for
   n = 0) and 'c' (circumferential: extensional/shear family, U_phi ~ n U_r,
   or torsion for n = 0).
@@ -35,7 +38,7 @@ def mode_class(U: np.ndarray, n: int, weights: np.ndarray, tyre: np.ndarray) -> 
     """'a', 'r' or 'c' from the mode shape U (nodes, 3) of harmonic n.
     ``tyre`` is a boolean mask of the tyre nodes."""
     fr, fz, fp = energy_fractions(U, weights)
-    if fz > fr + fp:
+    if fz >= max(fr, fp):
         return "a"
     ur, up = U[tyre, 0], U[tyre, 2]
     w = weights[tyre]

@@ -40,7 +40,8 @@ N_MODES = 2  # per harmonic
 TOL = 0.02  # relative frequency agreement required (finest 3D mesh)
 SIMPLIFY_TOL = 0.00075  # m, Douglas-Peucker tolerance of the outline
 SIZE_2D = 0.003  # m, element size of the harmonic reference mesh (P2)
-SIZES_3D = (0.024, 0.016, 0.011)  # m, 3D element sizes, coarse -> fine
+SIZES_3D = (0.030, 0.024, 0.017)  # m, 3D element sizes, coarse -> fine
+GEOM_ORDER = 2  # 3D geometry: 1 straight-sided (faceted) tets, 2 curved
 
 
 # ----------------------------------------------------------------------------
@@ -100,7 +101,7 @@ def harmonic_solver(segs: list[Segment], size: float, E, nu, rho):
 # ----------------------------------------------------------------------------
 # 3D model
 # ----------------------------------------------------------------------------
-def revolved_mesh(segs: list[Segment], h: float):
+def revolved_mesh(segs: list[Segment], h: float, geom_order: int = GEOM_ORDER):
     """Revolve the outline (x = r, z = Z, in the x-z plane) 360 degrees about
     the z axis (OCC), tetrahedral mesh of size h.  Returns (mesh, facet_tags,
     bore_tag)."""
@@ -135,6 +136,8 @@ def revolved_mesh(segs: list[Segment], h: float):
         gmsh.option.setNumber("Mesh.Algorithm", 6)
         gmsh.option.setNumber("Mesh.Algorithm3D", 1)
         gmsh.model.mesh.generate(3)
+        if geom_order > 1:
+            gmsh.model.mesh.setOrder(geom_order)  # curved tets on the surfaces of revolution
         mesh, _, ft = gmshio.model_to_mesh(gmsh.model, MPI.COMM_SELF, 0, gdim=3)
     finally:
         gmsh.finalize()
@@ -273,7 +276,6 @@ def harmonic_basis(sample, shape, n, xyz):
 
 def subspace_fraction(M, basis, vecs):
     """Fraction (0..1) of each M-normalised vector lying in span(basis)."""
-    from petsc4py import PETSc
 
     x = M.createVecRight()
     y = M.createVecLeft()
@@ -296,6 +298,7 @@ class Study:
     harmonic: dict  # n -> freqs (lowest N_MODES), fine 2D mesh
     harmonic_coarse: dict  # n -> freqs at 2 x SIZE_2D
     h2d_dofs: int
+    kinds: dict  # n -> dominant component per mode
     runs: list = field(default_factory=list)  # per 3D size: dict
 
 
@@ -305,12 +308,14 @@ def run_study(sizes=SIZES_3D, verbose=True) -> Study:
     E, nu, rho = (p["material"][k] for k in ("E", "nu", "rho"))
     hs = harmonic_solver(segs, SIZE_2D, E, nu, rho)
     hs_c = harmonic_solver(segs, 2 * SIZE_2D, E, nu, rho)
-    harm, harm_c, shapes = {}, {}, {}
+    harm, harm_c, shapes, kinds = {}, {}, {}, {}
     fmax = 3000.0
     for n in range(N_MAX + 1):
         res = hs.solve(n, fmax)
         harm[n] = res.freqs_hz[:N_MODES]
         shapes[n] = res.shapes[:N_MODES]
+        # dominant displacement component of each mode
+        kinds[n] = [("radial", "axial", "circumf.")[int(np.argmax(np.abs(sh).max(axis=0)))] for sh in shapes[n]]
         harm_c[n] = hs_c.solve(n, fmax).freqs_hz[:N_MODES]
     f_top = max(f[-1] for f in harm.values())
     # how many 3D modes lie below 1.1 f_top: count over all harmonics
@@ -322,7 +327,7 @@ def run_study(sizes=SIZES_3D, verbose=True) -> Study:
         count += len(fn) * (1 if n == 0 else 2)
         n += 1
     nev = count + 4
-    study = Study(harm, harm_c, 3 * hs.V.dofmap.index_map.size_local)
+    study = Study(harm, harm_c, 3 * hs.V.dofmap.index_map.size_local, kinds)
     if verbose:
         print(f"\nharmonic reference: {study.h2d_dofs} dofs; 3D modes below {1.1 * f_top:.0f} Hz: {count}, nev = {nev}")
         for n in harm:
@@ -367,8 +372,9 @@ def markdown(study: Study) -> str:
              f"and meshed in 2D for the harmonic solver. Steel E = 210 GPa, nu = 0.3, rho = 7850 kg/m^3. "
              f"Bore clamped (all components).\n")
     L.append(f"Harmonic reference: P2 triangles, size {SIZE_2D * 1000:.0f} mm, {study.h2d_dofs} dofs "
-             f"(2D convergence column: size {2 * SIZE_2D * 1000:.0f} mm). 3D: P2 tetrahedra (straight-sided), "
-             f"SLEPc shift-invert + MUMPS LU, one core. For n >= 1 both members of the 3D degenerate pair are listed; "
+             f"(2D convergence column: size {2 * SIZE_2D * 1000:.0f} mm). 3D: P2 tetrahedra, "
+             f"{'curved (quadratic geometry)' if GEOM_ORDER > 1 else 'straight-sided'}, "
+             f"SLEPc shift-invert + MUMPS LU, one core (OMP_NUM_THREADS=1); peak RSS is the process maximum so far. For n >= 1 both members of the 3D degenerate pair are listed; "
              f"MAC = mass-weighted fraction of the 3D mode in the span of the harmonic mode expanded to 3D "
              f"(cos and sin orientation).\n")
     L.append("## Meshes and cost\n")
@@ -378,8 +384,8 @@ def markdown(study: Study) -> str:
         L.append(f"| {run['h'] * 1000:.0f} | {run['ncells']} | {run['ndofs']} | {run['t_mesh']:.1f} | "
                  f"{run['t_solve']:.1f} | {run['nconv']} | {run['peak_gb']:.2f} |")
     L.append("\n## Frequencies (Hz) and deviation of 3D from harmonic\n")
-    head = "| n | mode | harmonic | harmonic (2D coarse) |"
-    sep = "|---:|---:|---:|---:|"
+    head = "| n | mode | dominant | harmonic | harmonic (2D coarse) |"
+    sep = "|---:|---:|---|---:|---:|"
     for run in study.runs:
         head += f" 3D h={run['h'] * 1000:.0f} mm | err % |"
         sep += "---:|---:|"
@@ -391,7 +397,7 @@ def markdown(study: Study) -> str:
     for i in range(nrows):
         r0 = study.runs[0]["rows"][i]
         n, m = r0["n"], r0["m"]
-        line = f"| {n} | {m + 1} | {r0['f_h']:.2f} | {study.harmonic_coarse[n][m]:.2f} |"
+        line = f"| {n} | {m + 1} | {study.kinds[n][m]} | {r0['f_h']:.2f} | {study.harmonic_coarse[n][m]:.2f} |"
         for run in study.runs:
             r = run["rows"][i]
             line += " " + " / ".join(f"{f:.2f}" for f in r["f_3d"]) + " | " + \
