@@ -305,7 +305,7 @@ def render_mode(
     base = surf.mesh
     deformed = base.copy()
     deformed.points = np.asarray(base.points) + u
-    deformed.point_data["|u| / max"] = mag / scale if scale > 0 else mag
+    deformed.point_data["rel. displ."] = mag / scale if scale > 0 else mag
 
     tmp = _tmp_name(path)
     d = os.path.dirname(os.path.abspath(path))
@@ -326,17 +326,17 @@ def render_mode(
             pl.add_mesh(edges, color="grey", line_width=1, opacity=0.6, show_scalar_bar=False)
         pl.add_mesh(
             deformed,
-            scalars="|u| / max",
+            scalars="rel. displ.",
             cmap="turbo",
             clim=(0.0, 1.0),
             smooth_shading=True,
             split_sharp_edges=True,
             show_scalar_bar=True,
             scalar_bar_args=dict(
-                title="|u| / max",
+                title="rel. displ.",
                 color="black",
                 vertical=True,
-                position_x=0.88,
+                position_x=0.86,
                 position_y=0.15,
                 width=0.07,
                 height=0.6,
