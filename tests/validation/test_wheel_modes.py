@@ -145,6 +145,18 @@ def test_c20_against_reference_with_mesh_convergence(tmp_path):
     DOCS.mkdir(parents=True, exist_ok=True)
     fig.savefig(DOCS / "c20_modes.png", dpi=110)
     plt.close(fig)
+    from geometry.wheel import wheel_segments
+
+    fig, ax = plt.subplots(figsize=(4.5, 6))
+    for seg in wheel_segments(p):
+        ax.plot(1e3 * (seg.points[:, 1] - p["axle"]["rolling_circle_z"]), 1e3 * seg.points[:, 0], lw=1.4)
+    ax.set_aspect("equal")
+    ax.set_xlabel("y^W (mm, + toward the field side)")
+    ax.set_ylabel("r (mm)")
+    ax.set_title("C20 cross-section (geometry/wheels/c20.toml)")
+    fig.tight_layout()
+    fig.savefig(DOCS / "c20_section.png", dpi=100)
+    plt.close(fig)
     s = default[4]
     _write("21_c20_modes.md", f"""## C20 wheel modes vs the reference table
 
@@ -161,6 +173,7 @@ Default mesh: all {s['found']} of {s['total']} found, median |deviation| {100 * 
 {markdown_table(mts)}
 
 ![C20 deviations](validation/c20_modes.png)
+![C20 cross-section](validation/c20_section.png)
 
 Mesh convergence (all mesh sizes of the parameter file scaled):
 
