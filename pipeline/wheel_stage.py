@@ -226,6 +226,7 @@ def modes_for_parameters(p: dict, workdir, workers: int | None = None) -> dict:
     from geometry.mesher import mesh_section
     from geometry.wheel import wheel_segments
 
+    Path(workdir).mkdir(parents=True, exist_ok=True)
     msh = str(Path(workdir) / "section.msh")
     names = mesh_section(wheel_segments(p), msh)
     results, pts, cells = solve_all(p, names, msh, workers)
