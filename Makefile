@@ -19,10 +19,10 @@ MODES_SRC    := solvers/axisym.py solvers/classify.py solvers/wheelset.py pipeli
 SHAPES_SRC   := postprocess/mode_shapes.py
 
 .DEFAULT_GOAL := all
-.PHONY: all help setup test validate bench mesh modes shapes check clean distclean
+.PHONY: all help setup test validate bench mesh modes report check clean distclean
 .DELETE_ON_ERROR:
 
-all: modes ## run the default case as far as the stages exist (wheel mesh, modes, mode shapes)
+all: report ## run the default case as far as the stages exist (wheel mesh, modes, mode shapes, report)
 
 help: ## list the targets
 	@grep -hE '^[a-z][a-zA-Z_-]*:.*## ' $(MAKEFILE_LIST) | sed 's/:.*## /\t/' | awk -F'\t' '{printf "  %-10s %s\n", $$1, $$2}'
@@ -59,8 +59,12 @@ $(W)/modes.npz: $(W)/mesh.json $(WFILE) $(MODES_SRC) | $(STAMP)
 $(W)/shapes/gallery.png: $(W)/modes.npz $(SHAPES_SRC) | $(STAMP)
 	$(PY) -m pipeline shapes --wheel $(WHEEL)
 
+$(BUILD)/report/$(CASE)/report.md: pipeline/cases/$(CASE).toml $(W)/modes.npz $(W)/shapes/gallery.png pipeline/report.py | $(STAMP)
+	$(PY) -m pipeline report --case $(CASE)
+
 mesh: $(W)/mesh.json ## Gmsh cross-section of WHEEL -> build/wheels/WHEEL/section.msh
 modes: $(W)/modes.npz $(W)/shapes/gallery.png ## wheel modes n = 0..N (dolfinx+SLEPc), mode table and 3D renders
+report: $(BUILD)/report/$(CASE)/report.md ## one Markdown report of CASE (WHEEL must be the case's wheel)
 
 # --- quality
 test: | $(STAMP) ## run the test suite (fast; validation tests are skipped)

@@ -13,6 +13,7 @@ STAGES = {
     "mesh": "mesh the wheel cross-section (Gmsh) -> build/wheels/<wheel>/section.msh",
     "modes": "wheel modes per Fourier harmonic (dolfinx + SLEPc), classified -> modes.npz, modes.csv",
     "shapes": "offscreen 3D renders of every wheel mode and a gallery -> shapes/*.png",
+    "report": "gather the case's results (so far: wheel modes and gallery) -> build/report/<case>/report.md",
     "check": "validate the configuration files only (no computation)",
 }
 
@@ -55,6 +56,10 @@ def main(argv=None) -> int:
             from .wheel_stage import run_modes
 
             run_modes(args.wheel, args.workers)
+        elif args.stage == "report":
+            from .report import run_report
+
+            run_report(args.case)
         elif args.stage == "shapes":
             from .wheel_stage import run_shapes
 

@@ -393,7 +393,9 @@ def render_gallery(path, images: Sequence, labels: Sequence[str], ncols: int = 4
     h, w = arrays[0].shape[:2]
     tile_w = 4.0
     tile_h = tile_w * h / w + 0.4  # room for the title
-    fig = Figure(figsize=(ncols * tile_w, nrows * tile_h), dpi=max(100, int(w / tile_w)))
+    # 80 dpi: tiles of ~320 px, enough to recognise a mode, and a gallery of
+    # some 40 modes stays around a megabyte
+    fig = Figure(figsize=(ncols * tile_w, nrows * tile_h), dpi=80)
     FigureCanvasAgg(fig)
     axes = fig.subplots(nrows, ncols, squeeze=False)
     for i, ax in enumerate(axes.ravel()):
