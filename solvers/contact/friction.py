@@ -1,0 +1,116 @@
+"""Regularized friction curves mu_RF(s) (SPEC 4.4, thesis [4.36-4.37]).
+
+For one Coulomb coefficient mu and one contact (its pressure field p3 on the
+grid) the thesis runs TANG without structural dynamics through the slow ramp
+gamma_y = -0.05 t / 2 s [4.36] and takes mu_RF = F2 / F3 at s = |gamma_y| v
+[4.37].  The ramp is so slow that every step is a steady state, so the same
+curve follows from steady-state TANG at chosen creepages.  The creepages are
+placed with the full-slip creepage of the simplified (Johnson-Vermeulen /
+Kalker) theory, gamma_sat = 3 mu F3 / k, where k = |dF2/dgamma_y| at zero
+creepage is the no-slip creep stiffness (Kalker's c^2 G C22), computed here by
+one TANG solve without slip on the same grid: 18 nodes in (0, 1.25 gamma_sat]
+clustered towards zero creepage (where the curve bends most), 5 on the plateau
+up to the ramp's end (|gamma_y| = 0.05).  Solved in order of increasing
+creepage, each solve warm-started from the previous one.
+
+The curve is stored as arrays (s, mu_RF, slopes) of a monotone piecewise-cubic
+Hermite interpolant (Fritsch-Carlson), evaluated by the njit function mu_rf().
+"""
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numba
+import numpy as np
+
+from .tang import tang_steady
+
+GAMMA_END = 0.05       # |gamma_y| at the end of the thesis' ramp [4.36]
+
+
+class RFCurve(NamedTuple):
+    s: np.ndarray           # slip velocity nodes [m/s], s[0] = 0
+    mu_rf: np.ndarray       # F2 / F3 at the nodes [-], mu_rf[0] = 0
+    slope: np.ndarray       # d mu_RF / ds at the nodes (monotone Hermite)
+    gamma: np.ndarray       # |gamma_y| at the nodes
+    F1_over_F3: np.ndarray  # residual longitudinal force (spin-free: ~0)
+    stick_fraction: np.ndarray
+    mu: float
+    v: float
+    gamma_sat: float        # full-slip creepage estimate 3 mu F3 / k
+    creep_stiffness: float  # k = |dF2/dgamma_y| at zero creepage [N]
+
+
+def creep_stiffness(p3, dx, dy, v, E=210e9, nu=0.3) -> float:
+    """|dF2/dgamma_y| at zero creepage (no slip: Kalker's linear theory c^2 G C22 on the
+    grid), from one TANG solve with a friction bound too high to be reached."""
+    gam = 1e-8
+    sol = tang_steady(p3, dx, dy, v, 1e6, gamma_y=gam, E=E, nu=nu)
+    return abs(sol.F2) / gam
+
+
+def creepage_nodes(gamma_sat, n_bend=18, n_plateau=5, gamma_end=GAMMA_END):
+    """|gamma_y| nodes: 0, n_bend in (0, 1.25 gamma_sat] (denser at small creepage),
+    n_plateau geometric up to gamma_end."""
+    k = np.arange(1, n_bend + 1) / n_bend
+    bend = 1.25 * gamma_sat * k**1.5
+    top = max(gamma_end, 3.0 * bend[-1])
+    plateau = np.geomspace(bend[-1], top, n_plateau + 1)[1:]
+    return np.concatenate([[0.0], bend, plateau])
+
+
+def monotone_slopes(x, y):
+    """Fritsch-Carlson slopes of the monotone cubic Hermite interpolant (PCHIP)."""
+    h = np.diff(x)
+    delta = np.diff(y) / h
+    d = np.zeros_like(y)
+    for k in range(1, len(x) - 1):
+        if delta[k - 1] * delta[k] > 0.0:
+            w1, w2 = 2 * h[k] + h[k - 1], h[k] + 2 * h[k - 1]
+            d[k] = (w1 + w2) / (w1 / delta[k - 1] + w2 / delta[k])
+    d[0] = delta[0]             # one-sided at the ends (mu_RF rises linearly from 0)
+    d[-1] = 0.0 if len(x) > 2 else delta[-1]
+    return d
+
+
+def rf_curve(p3, dx, dy, v, mu, E=210e9, nu=0.3, *, gammas=None, n_bend=18, n_plateau=5) -> RFCurve:
+    """Regularized friction curve mu_RF(s) = F2/F3 [4.37] for Coulomb coefficient mu on
+    the contact with pressures p3 (nx, ny) [Pa] (from NORM, any gap), grid dx x dy
+    (dx = v dt), rolling speed v [m/s].  Negative lateral creepage as in the ramp
+    [4.36], so F2 on the rail is positive."""
+    p3 = np.asarray(p3, dtype=float)
+    F3 = p3.sum() * dx * dy
+    k = creep_stiffness(p3, dx, dy, v, E, nu)
+    g_sat = 3.0 * mu * F3 / k
+    gam = creepage_nodes(g_sat, n_bend, n_plateau) if gammas is None else np.sort(np.abs(gammas))
+    mu_rf, f1, stick = np.zeros(len(gam)), np.zeros(len(gam)), np.zeros(len(gam))
+    stick[0] = 1.0
+    warm = None
+    for i, g in enumerate(gam):
+        if g == 0.0:
+            continue
+        sol = tang_steady(p3, dx, dy, v, mu, gamma_y=-g, E=E, nu=nu, warm=warm)
+        warm = sol
+        mu_rf[i], f1[i] = sol.F2 / F3, sol.F1 / F3
+        stick[i] = sol.stick.sum() / max((p3 > 0).sum(), 1)
+    mu_rf = np.maximum.accumulate(mu_rf)        # guard: rounding must not break monotonicity
+    s = gam * v
+    return RFCurve(s, mu_rf, monotone_slopes(s, mu_rf), gam, f1, stick, float(mu), float(v), float(g_sat), float(k))
+
+
+@numba.njit(cache=True)
+def mu_rf(s, s_nodes, mu_nodes, slopes):
+    """mu_RF at slip velocity |s| [m/s]: monotone cubic Hermite between the nodes,
+    constant beyond the last node (full slip plateau)."""
+    s = abs(s)
+    n = s_nodes.shape[0]
+    if s >= s_nodes[n - 1]:
+        return mu_nodes[n - 1]
+    k = np.searchsorted(s_nodes, s, side="right") - 1
+    if k < 0:
+        k = 0
+    h = s_nodes[k + 1] - s_nodes[k]
+    t = (s - s_nodes[k]) / h
+    t2, t3 = t * t, t * t * t
+    return ((2 * t3 - 3 * t2 + 1) * mu_nodes[k] + (t3 - 2 * t2 + t) * h * slopes[k]
+            + (-2 * t3 + 3 * t2) * mu_nodes[k + 1] + (t3 - t2) * h * slopes[k + 1])
