@@ -1,12 +1,10 @@
 """Automatic labelling of wheel modes as (n, m, class), SPEC 3.1.
 
-* class: 'a' (axial) when the axial component carries the largest share of
-  the kinetic energy (plurality of U_r, U_z, U_phi: the asymmetric section
-  mixes axial and in-plane motion, and a mode whose axial share merely
-  exceeds each in-plane share is still called axial, as in the reference
-  labels); otherwise the in-plane motion of the tyre decides between
+* class: from the rigid motion of the tyre cross-section (ring theory):
+  'a' (axial) when its out-of-plane motion (axial translation and rotation
+  about the circumferential axis) outweighs its in-plane motion; otherwise
   'r' (radial: inextensional ring bending, U_phi = -U_r / n, or breathing for
-  n = 0) and 'c' (circumferential: extensional/shear family, U_phi ~ n U_r,
+  n = 0) or 'c' (circumferential: extensional/shear family, U_phi ~ n U_r,
   or torsion for n = 0).
 * m: nodal circles, counted as sign changes of the dominant displacement
   component along the web centreline from the hub to the tread, ignoring
@@ -34,20 +32,52 @@ def energy_fractions(U: np.ndarray, weights: np.ndarray) -> np.ndarray:
     return e / e.sum()
 
 
-def mode_class(U: np.ndarray, n: int, weights: np.ndarray, tyre: np.ndarray) -> str:
+def tyre_rigid_motion(U: np.ndarray, points: np.ndarray, weights: np.ndarray) -> dict:
+    """Least-squares rigid motion of the tyre cross-section (the ring): the
+    translations T_r, T_z, T_phi and the rotation theta about the
+    circumferential axis through the section centroid, U_r = T_r - theta
+    (Z - Z_c), U_z = T_z + theta (r - r_c), U_phi = T_phi (weights r dA).
+    Returns those and the kinetic-energy-like measures of the out-of-plane
+    (T_z, theta) and in-plane (T_r, T_phi) ring motion."""
+    w = weights / weights.sum()
+    rc, zc = w @ points[:, 0], w @ points[:, 1]
+    dr, dz = points[:, 0] - rc, points[:, 1] - zc
+    J = w @ (dr**2 + dz**2)  # polar moment per unit mass
+    # normal equations decouple about the centroid except through theta
+    A = np.array([[1.0, 0.0, -0.0], [0.0, 1.0, 0.0], [0.0, 0.0, J]])
+    b = np.array([w @ U[:, 0], w @ U[:, 1], w @ (dr * U[:, 1] - dz * U[:, 0])])
+    Tr, Tz, th = np.linalg.solve(A, b)
+    Tp = w @ U[:, 2]
+    return {"T_r": Tr, "T_z": Tz, "T_phi": Tp, "theta": th,
+            "out_of_plane": Tz**2 + J * th**2, "in_plane": Tr**2 + Tp**2}
+
+
+def mode_class(U: np.ndarray, n: int, weights: np.ndarray, tyre: np.ndarray, points: np.ndarray) -> str:
     """'a', 'r' or 'c' from the mode shape U (nodes, 3) of harmonic n.
-    ``tyre`` is a boolean mask of the tyre nodes."""
-    fr, fz, fp = energy_fractions(U, weights)
-    if fz >= max(fr, fp):
+
+    Ring theory separates the motion of the tyre (the ring that carries the
+    web) into out-of-plane (axial translation and rotation of its cross-section
+    about the circumferential axis) and in-plane (radial and circumferential)
+    families.  Axial modes are the out-of-plane family: the rim rocks with the
+    web bending, so the tyre's rotation counts as axial motion even though it
+    moves the tyre faces radially.  The web and hub add their own axial and
+    in-plane kinetic energy (for modes the web dominates).  In-plane modes are radial (inextensional
+    bending, U_r + n U_phi = 0, or breathing for n = 0) or circumferential
+    (extensional/shear, U_phi ~ n U_r, or torsion for n = 0)."""
+    m = tyre_rigid_motion(U[tyre], points[tyre], weights[tyre])
+    mt = weights[tyre].sum()
+    rest = ~tyre
+    w = weights[rest]
+    out_of_plane = mt * m["out_of_plane"] + w @ U[rest, 1] ** 2
+    in_plane = mt * m["in_plane"] + w @ (U[rest, 0] ** 2 + U[rest, 2] ** 2)
+    if out_of_plane >= in_plane:
         return "a"
-    ur, up = U[tyre, 0], U[tyre, 2]
-    w = weights[tyre]
+    tr, tp = m["T_r"], m["T_phi"]
     if n == 0:
-        return "r" if (w * ur**2).sum() >= (w * up**2).sum() else "c"
-    bend = np.array([n, -1.0]) / np.hypot(n, 1.0)  # inextensional: U_r + n U_phi = 0
-    ext = np.array([1.0, n]) / np.hypot(n, 1.0)
-    q = np.column_stack([ur, up])
-    return "r" if (w * (q @ bend) ** 2).sum() >= (w * (q @ ext) ** 2).sum() else "c"
+        return "r" if tr**2 >= tp**2 else "c"
+    bend = (n * tr - tp) ** 2  # projection on (n, -1): U_r + n U_phi = 0
+    ext = (tr + n * tp) ** 2  # projection on (1, n)
+    return "r" if bend >= ext else "c"
 
 
 def sign_changes(values: np.ndarray, floor: float = 0.03) -> int:
@@ -123,7 +153,7 @@ def classify_modes(points, cells, shapes, n, tyre_mask, web_line):
     tri = _Triangulation(points, cells)
     labels = []
     for U in shapes:
-        cls = mode_class(U, n, w, tyre_mask)
+        cls = mode_class(U, n, w, tyre_mask, points)
         m = nodal_circles(tri.interpolate(U, web_line), cls)
         labels.append((m, cls))
     return labels

@@ -38,7 +38,7 @@ def _env(tmp_path, wheels):
     ("depth", "", "tyre.depth", "required key is missing"),
     # geometric consistency, checked before meshing: web thicker than the hub, bore outside the hub
     ("y_outboard", "y_outboard = -0.110", "web.thickness_hub", "a web thinner than the hub width"),
-    ("bore_radius", "bore_radius = 0.14", "hub.bore_radius", "bore_radius < hub.outer_radius"),
+    ("bore_radius", "bore_radius = 0.149", "hub.bore_radius", "bore_radius < hub.outer_radius"),
 ])
 def test_invalid_wheel_is_named_and_writes_nothing(tmp_path, line, new, key, allowed):
     wheels = tmp_path / "wheels"
