@@ -26,12 +26,6 @@ def nodal_weights(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
     return w * points[:, 0]
 
 
-def energy_fractions(U: np.ndarray, weights: np.ndarray) -> np.ndarray:
-    """Fractions of sum(w |U_i|^2) in the components (U_r, U_z, U_phi)."""
-    e = (weights[:, None] * U**2).sum(axis=0)
-    return e / e.sum()
-
-
 def tyre_rigid_motion(U: np.ndarray, points: np.ndarray, weights: np.ndarray) -> dict:
     """Least-squares rigid motion of the tyre cross-section (the ring): the
     translations T_r, T_z, T_phi and the rotation theta about the
