@@ -8,8 +8,9 @@
   or torsion for n = 0).
 * m: nodal circles, counted as sign changes of the dominant displacement
   component along the web centreline from the hub to the tread, ignoring
-  samples below 10% of the largest (a clamped hub would otherwise add
-  spurious zeros).
+  samples below 3 % (axial) or 30 % (in-plane) of the largest (a clamped hub
+  would otherwise add spurious zeros), then made consistent within each
+  (n, class) family by frequency order.
 """
 from __future__ import annotations
 
@@ -37,11 +38,9 @@ def tyre_rigid_motion(U: np.ndarray, points: np.ndarray, weights: np.ndarray) ->
     rc, zc = w @ points[:, 0], w @ points[:, 1]
     dr, dz = points[:, 0] - rc, points[:, 1] - zc
     J = w @ (dr**2 + dz**2)  # polar moment per unit mass
-    # normal equations decouple about the centroid except through theta
-    A = np.array([[1.0, 0.0, -0.0], [0.0, 1.0, 0.0], [0.0, 0.0, J]])
-    b = np.array([w @ U[:, 0], w @ U[:, 1], w @ (dr * U[:, 1] - dz * U[:, 0])])
-    Tr, Tz, th = np.linalg.solve(A, b)
-    Tp = w @ U[:, 2]
+    # about the centroid the normal equations decouple
+    Tr, Tz, Tp = w @ U[:, 0], w @ U[:, 1], w @ U[:, 2]
+    th = w @ (dr * U[:, 1] - dz * U[:, 0]) / J
     return {"T_r": Tr, "T_z": Tz, "T_phi": Tp, "theta": th,
             "out_of_plane": Tz**2 + J * th**2, "in_plane": Tr**2 + Tp**2}
 
