@@ -6,7 +6,7 @@ unit mistakes (mm typed for m, MPa for Pa).
 """
 from __future__ import annotations
 
-from .config import Field
+from .config import Field, ListOf
 
 L = dict(kind=float, unit="m")
 
@@ -117,4 +117,62 @@ CASE = {
         "dt": Field(float, unit="s", min=1e-6, max=2e-4, doc="time step; dx = v dt"),
         "duration": Field(float, unit="s", min=0.01, max=8.0, doc="at most this much rolling"),
     },
+}
+
+RAIL = {
+    "name": Field(str),
+    "description": Field(str, default=""),
+    "reference": {  # published values the section is checked against (tests/rail/test_section.py)
+        "source": Field(str),
+        "area": Field(float, unit="m^2", min=2e-3, max=1.2e-2),
+        "mass_per_m": Field(float, unit="kg/m", min=20.0, max=90.0),
+        "I_vertical": Field(float, unit="m^4", min=5e-6, max=8e-5),
+        "I_lateral": Field(float, unit="m^4", min=1e-6, max=2e-5),
+        "z_centroid": Field(float, unit="m", min=0.03, max=0.12, default=None),
+    },
+    "material": {
+        "E": Field(float, unit="Pa", min=50e9, max=400e9),
+        "nu": Field(float, min=0.0, max=0.49),
+        "rho": Field(float, unit="kg/m^3", min=1000.0, max=20000.0),
+        "loss_factor": Field(float, min=0.0, max=0.5, doc="steel loss factor (typ. 0.01-0.02)"),
+    },
+    "section": {"height": Field(**L, min=0.08, max=0.25)},
+    "head": {
+        "width": Field(**L, min=0.03, max=0.12),
+        "depth": Field(**L, min=0.02, max=0.08),
+        "crown_radius": Field(**L, min=0.05, max=1.0),
+        "crown_half_width": Field(**L, min=0.0, max=0.03),
+        "shoulder_radius": Field(**L, min=0.01, max=0.3),
+        "corner_radius": Field(**L, min=0.003, max=0.03),
+        "side_taper": Field(float, min=-0.5, max=0.5),
+        "underside_slope": Field(float, min=0.0, max=1.0),
+        "underside_radius": Field(**L, min=0.0, max=0.02),
+        "web_fillet": Field(**L, min=0.0, max=0.05),
+    },
+    "web": {"thickness": Field(**L, min=0.008, max=0.04)},
+    "foot": {
+        "width": Field(**L, min=0.06, max=0.2),
+        "thickness_web": Field(**L, min=0.008, max=0.05),
+        "thickness_edge": Field(**L, min=0.003, max=0.03),
+        "web_fillet": Field(**L, min=0.0, max=0.05),
+        "edge_radius": Field(**L, min=0.0, max=0.01),
+        "bottom_radius": Field(**L, min=0.0, max=0.01),
+    },
+    "pad": {
+        "thickness": Field(**L, min=0.002, max=0.05),
+        "width": Field(**L, min=0.03, max=0.25),
+        "stiffness": Field(float, unit="N/m^2", min=1e6, max=5e9,
+                           doc="vertical stiffness per metre of rail (typ. 1e8-6e8)"),
+        "loss_factor": Field(float, min=0.0, max=1.5, doc="typ. 0.15-0.3"),
+        "poisson": Field(float, min=0.0, max=0.4999),
+        "rho": Field(float, unit="kg/m^3", min=0.1, max=3000.0),
+    },
+    "mesh": {
+        "size_head": Field(**L, min=0.0005, max=0.02),
+        "size_web": Field(**L, min=0.0005, max=0.02),
+        "size_foot": Field(**L, min=0.0005, max=0.02),
+        "pad_layers": Field(int, min=1, max=10),
+    },
+    "contact": {"y": ListOf(Field(float, unit="m", min=-0.04, max=0.04), min_len=1, max_len=10,
+                            doc="rail-head points y^R where receptances are evaluated (SPEC 2)")},
 }

@@ -383,7 +383,7 @@ def markdown(study: Study) -> str:
     for run in study.runs:
         L.append(f"| {run['h'] * 1000:.0f} | {run['ncells']} | {run['ndofs']} | {run['t_mesh']:.1f} | "
                  f"{run['t_solve']:.1f} | {run['nconv']} | {run['peak_gb']:.2f} |")
-    L.append("\n## Frequencies (Hz) and deviation of 3D from harmonic\n")
+    L.append("\n### Frequencies (Hz) and deviation of 3D from harmonic\n")
     head = "| n | mode | dominant | harmonic | harmonic (2D coarse) |"
     sep = "|---:|---:|---|---:|---:|"
     for run in study.runs:
