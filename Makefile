@@ -4,6 +4,7 @@
 # WHEEL=<name> (geometry/wheels/<name>.toml).
 
 WHEEL ?= c20
+RAIL  ?= bv50
 CASE  ?= default
 BUILD ?= build
 PY    := .venv/bin/python
@@ -17,12 +18,14 @@ export OMP_NUM_THREADS ?= 1
 GEOMETRY_SRC := geometry/wheel.py geometry/outline.py geometry/mesher.py
 MODES_SRC    := solvers/axisym.py solvers/classify.py solvers/wheelset.py pipeline/wheel_stage.py
 SHAPES_SRC   := postprocess/mode_shapes.py
+RAIL_SRC     := geometry/rail.py geometry/mesher.py solvers/waveguide.py solvers/rail_response.py pipeline/rail_stage.py
+CONTACT_SRC  := $(wildcard solvers/contact/*.py) pipeline/contact_stage.py geometry/wheel.py geometry/rail.py
 
 .DEFAULT_GOAL := all
-.PHONY: all help setup test validate bench mesh modes report check clean distclean
+.PHONY: all help setup test validate bench mesh modes rail contact report check clean distclean
 .DELETE_ON_ERROR:
 
-all: report ## run the default case as far as the stages exist (wheel mesh, modes, mode shapes, report)
+all: report ## run the default case as far as the stages exist (wheel, rail, contact, report)
 
 help: ## list the targets
 	@grep -hE '^[a-z][a-zA-Z_-]*:.*## ' $(MAKEFILE_LIST) | sed 's/:.*## /\t/' | awk -F'\t' '{printf "  %-10s %s\n", $$1, $$2}'
@@ -46,8 +49,8 @@ $(STAMP): requirements.txt constraints.txt .apt-stamp
 
 setup: $(STAMP) ## install Debian packages and the Python venv (stamp files; reruns only when the lists change)
 
-check: | $(STAMP) ## validate the WHEEL and CASE files only
-	$(PY) -m pipeline check --wheel $(WHEEL) --case $(CASE)
+check: | $(STAMP) ## validate the WHEEL, RAIL and CASE files only
+	$(PY) -m pipeline check --wheel $(WHEEL) --rail $(RAIL) --case $(CASE)
 
 # --- wheel stages
 $(W)/mesh.json: $(WFILE) $(GEOMETRY_SRC) | $(STAMP)
@@ -59,12 +62,21 @@ $(W)/modes.npz: $(W)/mesh.json $(WFILE) $(MODES_SRC) | $(STAMP)
 $(W)/shapes/gallery.png: $(W)/modes.npz $(SHAPES_SRC) | $(STAMP)
 	$(PY) -m pipeline shapes --wheel $(WHEEL)
 
-$(BUILD)/report/$(CASE)/report.md: pipeline/cases/$(CASE).toml $(W)/modes.npz $(W)/shapes/gallery.png pipeline/report.py | $(STAMP)
+# --- rail and contact stages
+$(R)/rail.npz: $(RFILE) $(RAIL_SRC) | $(STAMP)
+	$(PY) -m pipeline rail --rail $(RAIL)
+
+$(C)/contact.npz: $(CFILE) $(WFILE) $(RFILE) $(CONTACT_SRC) | $(STAMP)
+	$(PY) -m pipeline contact --case $(CASE)
+
+$(BUILD)/report/$(CASE)/report.md: $(CFILE) $(W)/modes.npz $(W)/shapes/gallery.png $(R)/rail.npz $(C)/contact.npz pipeline/report.py | $(STAMP)
 	$(PY) -m pipeline report --case $(CASE)
 
 mesh: $(W)/mesh.json ## Gmsh cross-section of WHEEL -> build/wheels/WHEEL/section.msh
 modes: $(W)/modes.npz $(W)/shapes/gallery.png ## wheel modes n = 0..N (dolfinx+SLEPc), mode table and 3D renders
-report: $(BUILD)/report/$(CASE)/report.md ## one Markdown report of CASE (WHEEL must be the case's wheel)
+rail: $(R)/rail.npz ## rail section, waveguide FE, dispersion, receptances (RAIL=bv50)
+contact: $(C)/contact.npz ## contact of CASE: gap, NORM table, compliance, friction curves
+report: $(BUILD)/report/$(CASE)/report.md ## one Markdown report of CASE (WHEEL, RAIL must be the case's)
 
 # --- quality
 test: | $(STAMP) ## run the test suite (fast; validation tests are skipped)

@@ -13,6 +13,8 @@ STAGES = {
     "mesh": "mesh the wheel cross-section (Gmsh) -> build/wheels/<wheel>/section.msh",
     "modes": "wheel modes per Fourier harmonic (dolfinx + SLEPc), classified -> modes.npz, modes.csv",
     "shapes": "offscreen 3D renders of every wheel mode and a gallery -> shapes/*.png",
+    "rail": "rail cross-section, waveguide FE, dispersion and receptances -> build/rails/<rail>/rail.npz",
+    "contact": "contact of the case: gap, NORM table, compliance, friction curves -> build/cases/<case>/contact.npz",
     "report": "gather the case's results (so far: wheel modes and gallery) -> build/report/<case>/report.md",
     "check": "validate the configuration files only (no computation)",
 }
@@ -24,6 +26,7 @@ def main(argv=None) -> int:
                                  epilog="stages:\n" + "\n".join(f"  {k:8s} {v}" for k, v in STAGES.items()))
     ap.add_argument("stage", choices=list(STAGES))
     ap.add_argument("--wheel", default="c20", help="wheel parameter file geometry/wheels/<name>.toml (default c20)")
+    ap.add_argument("--rail", default="bv50", help="rail parameter file geometry/rails/<name>.toml (default bv50)")
     ap.add_argument("--case", default="default", help="case file pipeline/cases/<name>.toml (default: default)")
     ap.add_argument("--workers", type=int, default=None, help="processes for the harmonic solves (default: cores)")
     ap.add_argument("-v", "--verbose", action="count", default=0, help="more logging (-vv for debug)")
@@ -43,11 +46,14 @@ def main(argv=None) -> int:
             from .wheel_stage import load_wheel
 
             load_wheel(args.wheel)
+            from .rail_stage import load_rail_params
+
+            load_rail_params(args.rail)
             case_path = paths.case_file(args.case)
             if not case_path.exists():
                 raise ConfigError(str(case_path), detail=f"no such case; available: {paths.available(paths.CASES)}")
             load(case_path, CASE)
-            print(f"wheel {args.wheel} and case {args.case}: configuration OK")
+            print(f"wheel {args.wheel}, rail {args.rail} and case {args.case}: configuration OK")
         elif args.stage == "mesh":
             from .wheel_stage import run_mesh
 
@@ -56,6 +62,14 @@ def main(argv=None) -> int:
             from .wheel_stage import run_modes
 
             run_modes(args.wheel, args.workers)
+        elif args.stage == "rail":
+            from .rail_stage import run_rail
+
+            run_rail(args.rail)
+        elif args.stage == "contact":
+            from .contact_stage import run_contact
+
+            run_contact(args.case)
         elif args.stage == "report":
             from .report import run_report
 

@@ -9,6 +9,21 @@ ROOT = Path(__file__).resolve().parent.parent
 BUILD = Path(os.environ.get("SQUEAL_BUILD_DIR", ROOT / "build"))
 WHEELS = Path(os.environ.get("SQUEAL_WHEEL_DIR", ROOT / "geometry" / "wheels"))
 CASES = Path(os.environ.get("SQUEAL_CASE_DIR", ROOT / "pipeline" / "cases"))
+RAILS = Path(os.environ.get("SQUEAL_RAIL_DIR", ROOT / "geometry" / "rails"))
+
+
+def rail_file(name: str) -> Path:
+    return RAILS / f"{name}.toml"
+
+
+def rail_dir(name: str) -> Path:
+    """build/rails/<name>/: section.msh, rail.npz, receptance.png, dispersion.png."""
+    return BUILD / "rails" / name
+
+
+def case_dir(name: str) -> Path:
+    """build/cases/<name>/: contact.npz, contact_rf.png (and later stages)."""
+    return BUILD / "cases" / name
 
 
 def case_file(name: str) -> Path:

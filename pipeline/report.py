@@ -9,6 +9,8 @@ from __future__ import annotations
 import logging
 import shutil
 
+import numpy as np
+
 from . import artifacts, paths
 from .config import load
 from .schemas import CASE
@@ -43,6 +45,46 @@ The squeal candidates, axial modes with no nodal circle (n, 0, a): {', '.join(f'
 """
 
 
+def rail_section(rail: str, figdir) -> str:
+    from .rail_stage import load_rail_params
+
+    p, src = load_rail_params(rail)
+    rdir = paths.rail_dir(rail)
+    a, prov = artifacts.load_npz(rdir / "rail.npz", "rail", p, make_target=f"rail RAIL={rail}")
+    for fig in ("receptance", "dispersion"):
+        shutil.copy2(rdir / f"{fig}.png", figdir / f"{rail}_{fig}.png")
+    f, G = a["f_hz"], a["G"][:, 0]
+    i300 = int(np.argmin(abs(f - 300.0)))
+    pts = ", ".join(f"{1e3 * y:+.0f} mm" for y in a["point_y_m"])
+    return f"""## Rail `{rail}`
+
+Parameters: `{src}` (hash {prov['config_hash']}). Section: {1e4 * float(a['section_area_m2']):.2f} cm^2,
+{float(a['section_mass_per_m']):.2f} kg/m, I_vertical {1e8 * float(a['section_I_vertical_m4']):.0f} cm^4, I_lateral
+{1e8 * float(a['section_I_lateral_m4']):.0f} cm^4; pad {float(a['pad_k_vertical_n_per_m2']) / 1e6:.0f} MN/m^2 vertical.
+Receptances at the rail-head points {pts}; vertical point receptance at {f[i300]:.0f} Hz:
+{20 * np.log10(abs(G[0, i300, 1, 1])):.1f} dB re 1 m/N.
+
+![rail receptances](figures/{rail}_receptance.png)
+![rail dispersion](figures/{rail}_dispersion.png)
+"""
+
+
+def contact_section(case: str, cfg: dict, figdir) -> str:
+    a, _ = artifacts.load_npz(paths.case_dir(case) / "contact.npz", "contact", cfg, make_target=f"contact CASE={case}")
+    shutil.copy2(paths.case_dir(case) / "contact_rf.png", figdir / f"{case}_contact_rf.png")
+    p = a["p3_static"]
+    ncontact = int((p > 0).sum())
+    return f"""## Contact
+
+Nominal contact point y^W = {1e3 * float(a['y_wheel']):+.0f} mm on the tread, y^R = {1e3 * float(a['y_rail']):+.0f} mm on
+the rail head; grid {len(a['x'])} x {len(a['y'])} elements of {1e3 * float(a['dx']):.2f} x {1e3 * float(a['dy']):.2f} mm
+(dx = v dt). Static preload: approach {1e6 * float(a['xi3_static']):.1f} um, {ncontact} elements in contact,
+peak pressure {float(p.max()) / 1e9:.2f} GPa. Regularized friction curves (Kalker's TANG, steady state):
+
+![friction curves](figures/{case}_contact_rf.png)
+"""
+
+
 def run_report(case: str) -> str:
     cpath = paths.case_file(case)
     c = load(cpath, CASE)
@@ -52,7 +94,10 @@ def run_report(case: str) -> str:
     sections = [f"# Curve squeal report: case `{case}`\n\n{c['description']}\n\n"
                 f"Case file `{cpath}`: wheel `{c['wheel']}`, rail `{c['rail']}`, dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm, "
                 f"mu = {c['friction']['mu']}, gamma_y = {c['kinematics']['gamma_y']}, v = {3.6 * c['kinematics']['speed']:.0f} km/h.\n",
-                wheel_section(c["wheel"], figdir)]
+                wheel_section(c["wheel"], figdir), rail_section(c["rail"], figdir)]
+    from .contact_stage import contact_inputs
+
+    sections.append(contact_section(case, contact_inputs(case)[3], figdir))
     text = "\n".join(sections)
     with artifacts.atomic_write(out / "report.md") as tmp:
         tmp.write_text(text)

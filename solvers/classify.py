@@ -92,16 +92,17 @@ def nodal_circles(U_line: np.ndarray, cls: str) -> int:
 
 def order_nodal_circles(freqs, labels):
     """Make m consistent within each (n, class) family: the modes of one
-    harmonic and class are ordered by nodal circles as frequency rises, so
-    a repeated or decreasing count (a zero lying exactly at the web-tyre
-    junction is easily missed) is replaced by the rank.  Returns the new
+    harmonic and class are ordered by nodal circles as frequency rises,
+    starting with none, so a family whose counts are not 0, 1, 2, ... (a
+    zero lying exactly at the web-tyre junction is easily missed or
+    doubled) takes the rank instead.  Returns the new
     labels and a flag per mode telling whether the count was overridden."""
     out = list(labels)
     fixed = [False] * len(labels)
     for cls in {c for _, c in labels}:
         idx = [i for i in np.argsort(freqs) if labels[i][1] == cls]
         counted = [labels[i][0] for i in idx]
-        if counted != sorted(set(counted)) or len(set(counted)) != len(counted):
+        if counted != list(range(len(counted))):
             for rank, i in enumerate(idx):
                 if labels[i][0] != rank:
                     out[i] = (rank, cls)

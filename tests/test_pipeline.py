@@ -68,9 +68,9 @@ def test_invalid_case_friction_seven(tmp_path):
 
 @pytest.fixture(scope="module")
 def built(tmp_path_factory):
-    """The c20 wheel stages built once by Make into a private build folder."""
+    """The default case (c20, bv50) built once by Make into a private build folder."""
     build = tmp_path_factory.mktemp("build")
-    r = make("modes", build=build)
+    r = make("all", build=build)
     assert r.returncode == 0, r.stdout + r.stderr
     return build
 
@@ -84,16 +84,23 @@ def test_make_builds_wheel_artifacts(built):
 
 
 def test_nothing_reruns_when_nothing_changed(built):
-    assert make("-q", "modes", build=built).returncode == 0
+    assert make("-q", "all", build=built).returncode == 0
 
 
-def test_touching_wheel_file_rebuilds_only_wheel_stages(built):
+def _stages_after_touching(path, built):
     # -W: 'what if this file were newer' (same as touch, without touching the tree)
-    r = make("-n", "-W", "geometry/wheels/c20.toml", "modes", build=built)
+    r = make("-n", "-W", path, "all", build=built)
     lines = [ln for ln in r.stdout.splitlines() if ln.strip()]
-    stages = [ln.split("-m pipeline ")[1].split()[0] for ln in lines if "-m pipeline " in ln]
-    assert stages == ["mesh", "modes", "shapes"], r.stdout
     assert not any("pip install" in ln or "apt-get" in ln for ln in lines)
+    return [ln.split("-m pipeline ")[1].split()[0] for ln in lines if "-m pipeline " in ln]
+
+
+def test_touching_wheel_file_rebuilds_only_wheel_stages_and_dependents(built):
+    assert _stages_after_touching("geometry/wheels/c20.toml", built) == ["mesh", "modes", "shapes", "contact", "report"]
+
+
+def test_touching_rail_file_rebuilds_only_rail_stages_and_dependents(built):
+    assert _stages_after_touching("geometry/rails/bv50.toml", built) == ["rail", "contact", "report"]
 
 
 def test_killed_stage_leaves_no_complete_artifact(built, tmp_path):
