@@ -1,7 +1,8 @@
 # Curve squeal pipeline: geometry -> wheel modes -> ... (see README).
 # `make` sets up the machine and runs the default case as far as the stages
 # exist; `make test` sets up and runs the test suite.  Select inputs with
-# WHEEL=<name> (geometry/wheels/<name>.toml).
+# WHEEL=<name> (geometry/wheels/<name>.toml), RAIL=<name> (geometry/rails/),
+# CASE=<name> (pipeline/cases/).
 
 WHEEL ?= c20
 RAIL  ?= bv50
@@ -10,8 +11,12 @@ BUILD ?= build
 PY    := .venv/bin/python
 STAMP := .venv/.setup-stamp
 W     := $(BUILD)/wheels/$(WHEEL)
-export SQUEAL_BUILD_DIR := $(abspath $(BUILD))
+R     := $(BUILD)/rails/$(RAIL)
+C     := $(BUILD)/cases/$(CASE)
 WFILE := geometry/wheels/$(WHEEL).toml
+RFILE := geometry/rails/$(RAIL).toml
+CFILE := pipeline/cases/$(CASE).toml
+export SQUEAL_BUILD_DIR := $(abspath $(BUILD))
 export VTK_DEFAULT_OPENGL_WINDOW ?= vtkEGLRenderWindow
 export OMP_NUM_THREADS ?= 1
 
@@ -20,12 +25,13 @@ MODES_SRC    := solvers/axisym.py solvers/classify.py solvers/wheelset.py pipeli
 SHAPES_SRC   := postprocess/mode_shapes.py
 RAIL_SRC     := geometry/rail.py geometry/mesher.py solvers/waveguide.py solvers/rail_response.py pipeline/rail_stage.py
 CONTACT_SRC  := $(wildcard solvers/contact/*.py) pipeline/contact_stage.py geometry/wheel.py geometry/rail.py
+GREENS_SRC   := solvers/green.py solvers/receptance.py solvers/rail_response.py pipeline/greens_stage.py
 
 .DEFAULT_GOAL := all
-.PHONY: all help setup test validate bench mesh modes rail contact report check clean distclean
+.PHONY: all help setup test validate bench mesh modes rail contact greens report check clean distclean
 .DELETE_ON_ERROR:
 
-all: report ## run the default case as far as the stages exist (wheel, rail, contact, report)
+all: report ## run the default case as far as the stages exist (wheel, rail, contact, greens, report)
 
 help: ## list the targets
 	@grep -hE '^[a-z][a-zA-Z_-]*:.*## ' $(MAKEFILE_LIST) | sed 's/:.*## /\t/' | awk -F'\t' '{printf "  %-10s %s\n", $$1, $$2}'
@@ -69,13 +75,17 @@ $(R)/rail.npz: $(RFILE) $(RAIL_SRC) | $(STAMP)
 $(C)/contact.npz: $(CFILE) $(WFILE) $(RFILE) $(CONTACT_SRC) | $(STAMP)
 	$(PY) -m pipeline contact --case $(CASE)
 
-$(BUILD)/report/$(CASE)/report.md: $(CFILE) $(W)/modes.npz $(W)/shapes/gallery.png $(R)/rail.npz $(C)/contact.npz pipeline/report.py | $(STAMP)
+$(C)/greens.npz: $(CFILE) $(W)/modes.npz $(R)/rail.npz $(GREENS_SRC) | $(STAMP)
+	$(PY) -m pipeline greens --case $(CASE)
+
+$(BUILD)/report/$(CASE)/report.md: $(CFILE) $(W)/modes.npz $(W)/shapes/gallery.png $(R)/rail.npz $(C)/contact.npz $(C)/greens.npz pipeline/report.py | $(STAMP)
 	$(PY) -m pipeline report --case $(CASE)
 
 mesh: $(W)/mesh.json ## Gmsh cross-section of WHEEL -> build/wheels/WHEEL/section.msh
 modes: $(W)/modes.npz $(W)/shapes/gallery.png ## wheel modes n = 0..N (dolfinx+SLEPc), mode table and 3D renders
 rail: $(R)/rail.npz ## rail section, waveguide FE, dispersion, receptances (RAIL=bv50)
 contact: $(C)/contact.npz ## contact of CASE: gap, NORM table, compliance, friction curves
+greens: $(C)/greens.npz ## Green's functions of CASE: wheel (Kropp + modal filters), moving rail kernel
 report: $(BUILD)/report/$(CASE)/report.md ## one Markdown report of CASE (WHEEL, RAIL must be the case's)
 
 # --- quality

@@ -15,6 +15,7 @@ STAGES = {
     "shapes": "offscreen 3D renders of every wheel mode and a gallery -> shapes/*.png",
     "rail": "rail cross-section, waveguide FE, dispersion and receptances -> build/rails/<rail>/rail.npz",
     "contact": "contact of the case: gap, NORM table, compliance, friction curves -> build/cases/<case>/contact.npz",
+    "greens": "wheel Green's function (Kropp, modal filters) and moving rail Green's function -> greens.npz",
     "report": "gather the case's results (so far: wheel modes and gallery) -> build/report/<case>/report.md",
     "check": "validate the configuration files only (no computation)",
 }
@@ -70,6 +71,10 @@ def main(argv=None) -> int:
             from .contact_stage import run_contact
 
             run_contact(args.case)
+        elif args.stage == "greens":
+            from .greens_stage import run_greens
+
+            run_greens(args.case)
         elif args.stage == "report":
             from .report import run_report
 

@@ -85,6 +85,23 @@ peak pressure {float(p.max()) / 1e9:.2f} GPa. Regularized friction curves (Kalke
 """
 
 
+def greens_section(case: str, figdir) -> str:
+    from .greens_stage import greens_inputs
+
+    cfg = greens_inputs(case)[-1]
+    a, _ = artifacts.load_npz(paths.case_dir(case) / "greens.npz", "greens", cfg, make_target=f"greens CASE={case}")
+    shutil.copy2(paths.case_dir(case) / "greens.png", figdir / f"{case}_greens.png")
+    return f"""## Green's functions
+
+Wheel: {len(a['wheel_f'])} modes at the contact point, Kropp's grid N_t = {int(a['wheel_nt'])} ({int(a['wheel_nt']) * float(a['dt']):.0f} s,
+decayed to {float(a['wheel_decay_db']):.0f} dB); the time loop uses the equivalent recursive modal filters. Rail: moving Green's
+function over {len(a['rail_kernel'])} lags ({len(a['rail_kernel']) * float(a['dt']) * 1e3:.0f} ms), its tail at
+{float(a['rail_tail_ratio']):.1e} of the peak.
+
+![Green's functions](figures/{case}_greens.png)
+"""
+
+
 def run_report(case: str) -> str:
     cpath = paths.case_file(case)
     c = load(cpath, CASE)
@@ -98,6 +115,7 @@ def run_report(case: str) -> str:
     from .contact_stage import contact_inputs
 
     sections.append(contact_section(case, contact_inputs(case)[3], figdir))
+    sections.append(greens_section(case, figdir))
     text = "\n".join(sections)
     with artifacts.atomic_write(out / "report.md") as tmp:
         tmp.write_text(text)
