@@ -17,6 +17,10 @@ import numpy as np
 from .outline import GeometryError, Segment, bezier, check_simple, closed_polygon, fillet
 
 
+# lateral tread positions y^W of the nominal contact points (SPEC 2, thesis [4.1])
+CONTACT_Y = (0.005, -0.004, -0.032)
+
+
 def _require(cond: bool, key: str, value, allowed: str) -> None:
     if not cond:
         raise GeometryError(key, value, allowed)
@@ -66,6 +70,10 @@ def tread_profile(p: dict, num: int = 24) -> dict:
     pts += list(fillet(tip[0], tip[1], root, fl["tip_radius"], 6))
     pts += list(fillet(tip[1], root, field, fl["root_radius"], 10))
     tread = np.linspace(pts[-1], field - [cham, -cham * c], num)[1:]
+    # mesh nodes exactly at the nominal contact points (SPEC 2) that lie on the cone
+    ys = [y for y in CONTACT_Y if pts[-1][0] + 1e-4 < y < tread[-1][0] - 1e-4]
+    ys = np.union1d(tread[:, 0], ys)
+    tread = np.column_stack([ys, R0 - c * ys])
     pts += list(tread)
     pts.append(np.array([y_f, field[1] - cham]))
     pts = np.array(pts)
