@@ -16,6 +16,7 @@ STAGES = {
     "rail": "rail cross-section, waveguide FE, dispersion and receptances -> build/rails/<rail>/rail.npz",
     "contact": "contact of the case: gap, NORM table, compliance, friction curves -> build/cases/<case>/contact.npz",
     "greens": "wheel Green's function (Kropp, modal filters) and moving rail Green's function -> greens.npz",
+    "simulate": "time-domain wheel/rail interaction of the case (numba) -> build/cases/<case>/simulate.npz",
     "report": "gather the case's results (so far: wheel modes and gallery) -> build/report/<case>/report.md",
     "check": "validate the configuration files only (no computation)",
 }
@@ -75,6 +76,10 @@ def main(argv=None) -> int:
             from .greens_stage import run_greens
 
             run_greens(args.case)
+        elif args.stage == "simulate":
+            from .simulate_stage import run_simulate
+
+            run_simulate(args.case)
         elif args.stage == "report":
             from .report import run_report
 

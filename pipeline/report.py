@@ -102,6 +102,22 @@ function over {len(a['rail_kernel'])} lags ({len(a['rail_kernel']) * float(a['dt
 """
 
 
+def simulate_section(case: str, figdir) -> str:
+    from .simulate_stage import simulate_config
+
+    a, _ = artifacts.load_npz(paths.case_dir(case) / "simulate.npz", "simulate", simulate_config(case)[-1],
+                              make_target=f"simulate CASE={case}")
+    shutil.copy2(paths.case_dir(case) / "simulate.png", figdir / f"{case}_simulate.png")
+    squeal = float(a["L_F2"]) >= 10.0
+    return f"""## Interaction
+
+{int(a['n_steps'])} time steps, stopped: {a['stop_reason']}. L_F2 = {float(a['L_F2']):.1f} dB re 1 N, dominant frequency of F2
+{float(a['f_dominant']):.1f} Hz: {'squeal' if squeal else 'no squeal (L_F2 < 10 dB)'}.
+
+![force histories](figures/{case}_simulate.png)
+"""
+
+
 def run_report(case: str) -> str:
     cpath = paths.case_file(case)
     c = load(cpath, CASE)
@@ -116,6 +132,7 @@ def run_report(case: str) -> str:
 
     sections.append(contact_section(case, contact_inputs(case)[3], figdir))
     sections.append(greens_section(case, figdir))
+    sections.append(simulate_section(case, figdir))
     text = "\n".join(sections)
     with artifacts.atomic_write(out / "report.md") as tmp:
         tmp.write_text(text)

@@ -30,14 +30,18 @@ def pytest_collection_modifyitems(config, items):
 def pytest_sessionstart(session):
     """Make sure the C20 modal artifact (build/wheels/c20/modes.npz) exists and
     matches the current wheel file before collection: the receptance, Green's
-    function and radiation tests run on the real C20, also on a fresh clone."""
-    from pipeline.artifacts import ArtifactError, load_npz
-    from pipeline.paths import wheel_dir
-    from pipeline.wheel_stage import load_wheel, run_mesh, run_modes
+    function and radiation tests run on the real C20, also on a fresh clone.
+    Built in subprocesses (the CLI), so this process keeps no PETSc/MPI or
+    Gmsh state (VTK's offscreen rendering aborts after an in-process PETSc
+    initialisation in some orders)."""
+    import subprocess
+    import sys
+    from pathlib import Path
 
-    p, _ = load_wheel("c20")
-    try:
-        load_npz(wheel_dir("c20") / "modes.npz", "wheel-modes", p)
-    except ArtifactError:
-        run_mesh("c20")
-        run_modes("c20")
+    root = Path(__file__).resolve().parent.parent
+    check = ("from pipeline.artifacts import load_npz; from pipeline.paths import wheel_dir; "
+             "from pipeline.wheel_stage import load_wheel; "
+             "load_npz(wheel_dir('c20') / 'modes.npz', 'wheel-modes', load_wheel('c20')[0])")
+    if subprocess.run([sys.executable, "-c", check], cwd=root, capture_output=True).returncode != 0:
+        for stage in ("mesh", "modes"):
+            subprocess.run([sys.executable, "-m", "pipeline", stage, "--wheel", "c20", "-q"], cwd=root, check=True)

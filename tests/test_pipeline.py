@@ -96,11 +96,11 @@ def _stages_after_touching(path, built):
 
 
 def test_touching_wheel_file_rebuilds_only_wheel_stages_and_dependents(built):
-    assert _stages_after_touching("geometry/wheels/c20.toml", built) == ["mesh", "modes", "shapes", "contact", "greens", "report"]
+    assert _stages_after_touching("geometry/wheels/c20.toml", built) == ["mesh", "modes", "shapes", "contact", "greens", "simulate", "report"]
 
 
 def test_touching_rail_file_rebuilds_only_rail_stages_and_dependents(built):
-    assert _stages_after_touching("geometry/rails/bv50.toml", built) == ["rail", "contact", "greens", "report"]
+    assert _stages_after_touching("geometry/rails/bv50.toml", built) == ["rail", "contact", "greens", "simulate", "report"]
 
 
 def test_killed_stage_leaves_no_complete_artifact(built, tmp_path):
