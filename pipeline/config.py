@@ -560,3 +560,20 @@ def config_hash(cfg: Mapping) -> str:
         cfg, sort_keys=True, separators=(",", ":"), ensure_ascii=False, allow_nan=False
     )
     return hashlib.sha256(canonical.encode("utf-8")).hexdigest()[:16]
+
+
+def load_geometry(path, schema: Mapping, check, what: str, available: Sequence[str]) -> dict:
+    """Load a geometry parameter file and run the geometry's own consistency
+    check ``check(params)`` (which raises geometry.outline.GeometryError);
+    both kinds of problem come out as ConfigError naming the file.  ``what``
+    ('wheel', 'rail') and ``available`` make the missing-file message."""
+    from geometry.outline import GeometryError
+
+    if not os.path.exists(path):
+        raise ConfigError(str(path), detail=f"no such {what}; available: {list(available)}")
+    params = load(path, schema)
+    try:
+        check(params)
+    except GeometryError as e:
+        raise ConfigError(str(path), [(e.key, e.value, e.allowed)]) from None
+    return params

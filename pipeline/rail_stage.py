@@ -16,7 +16,7 @@ import time
 import numpy as np
 
 from . import artifacts, paths
-from .config import ConfigError, load
+from .config import load_geometry
 from .schemas import RAIL
 
 log = logging.getLogger("pipeline.rail")
@@ -28,18 +28,10 @@ X_MAX = 2.0
 
 def load_rail_params(name: str) -> tuple[dict, str]:
     """Validated rail parameters (geometry checked too) and the file path."""
-    from geometry.outline import GeometryError
     from geometry.rail import check_rail
 
     path = paths.rail_file(name)
-    if not path.exists():
-        raise ConfigError(str(path), detail=f"no such rail; available: {paths.available(paths.RAILS)}")
-    p = load(path, RAIL)
-    try:
-        check_rail(p)
-    except GeometryError as e:
-        raise ConfigError(str(path), [(e.key, e.value, e.allowed)]) from None
-    return p, str(path)
+    return load_geometry(path, RAIL, check_rail, "rail", paths.available(paths.RAILS)), str(path)
 
 
 def run_rail(name: str) -> dict:

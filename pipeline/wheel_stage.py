@@ -19,7 +19,7 @@ from multiprocessing import get_context
 import numpy as np
 
 from . import artifacts, paths
-from .config import ConfigError, load
+from .config import load_geometry
 from .schemas import WHEEL
 
 log = logging.getLogger("pipeline.wheel")
@@ -27,18 +27,10 @@ log = logging.getLogger("pipeline.wheel")
 
 def load_wheel(name: str) -> tuple[dict, str]:
     """Validated wheel parameters (geometry checked too) and the file path."""
-    from geometry.outline import GeometryError
     from geometry.wheel import wheel_segments
 
     path = paths.wheel_file(name)
-    if not path.exists():
-        raise ConfigError(str(path), detail=f"no such wheel; available: {paths.available(paths.WHEELS)}")
-    p = load(path, WHEEL)
-    try:
-        wheel_segments(p)
-    except GeometryError as e:
-        raise ConfigError(str(path), [(e.key, e.value, e.allowed)]) from None
-    return p, str(path)
+    return load_geometry(path, WHEEL, wheel_segments, "wheel", paths.available(paths.WHEELS)), str(path)
 
 
 def run_mesh(name: str) -> None:

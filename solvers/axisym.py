@@ -160,8 +160,8 @@ class HarmonicSolver:
         singular).  Requested count grows until the highest converged
         eigenvalue exceeds fmax."""
         from dolfinx.fem.petsc import assemble_matrix
-        from petsc4py import PETSc
-        from slepc4py import SLEPc
+
+        from .eigen import eigenvalues, shift_invert
 
         self.n_const.value = float(n)
         self.tors.value = 0.0 if n == 0 else 1.0
@@ -173,24 +173,9 @@ class HarmonicSolver:
         sigma = -(2 * np.pi * 5.0) ** 2
         nev = nev_min
         while True:
-            eps = SLEPc.EPS().create(self.mesh.comm)
-            eps.setOperators(K, M)
-            eps.setProblemType(SLEPc.EPS.ProblemType.GHEP)
-            st = eps.getST()
-            st.setType(SLEPc.ST.Type.SINVERT)
-            st.setShift(sigma)
-            ksp = st.getKSP()
-            ksp.setType("preonly")
-            pc = ksp.getPC()
-            pc.setType("lu")
-            pc.setFactorSolverType("mumps")
-            eps.setWhichEigenpairs(SLEPc.EPS.Which.TARGET_MAGNITUDE)
-            eps.setTarget(sigma)
-            eps.setDimensions(nev, PETSc.DECIDE)
-            eps.setTolerances(tol, 200)
-            eps.solve()
-            nconv = eps.getConverged()
-            lams = np.array([eps.getEigenvalue(i).real for i in range(nconv)])
+            eps = shift_invert(K, M, nev, sigma, tol, 200, self.mesh.comm)
+            lams = eigenvalues(eps)
+            nconv = len(lams)
             order = np.argsort(lams)
             lams = lams[order]
             top = np.sqrt(max(lams[-1], 0.0)) / (2 * np.pi) if nconv else 0.0

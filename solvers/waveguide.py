@@ -322,32 +322,16 @@ def eig_real_k(fam: Family, k: float, fmax: float, nev_min: int = 12, tol: float
     <= fmax (Hz): (K0 + k K1 + k^2 K2) phi = w^2 M phi by SLEPc shift-invert
     (MUMPS) about a small negative shift.  Returns (f_hz (n,), phi (N, n)
     M-normalised, or None)."""
-    from petsc4py import PETSc
-    from slepc4py import SLEPc
+    from .eigen import eigenvalues, shift_invert
 
     K = _petsc(fam.K(k))
     M = _petsc(fam.M)
     sigma = -(2 * np.pi * 2.0) ** 2
     nev = nev_min
     while True:
-        eps = SLEPc.EPS().create(PETSc.COMM_SELF)
-        eps.setOperators(K, M)
-        eps.setProblemType(SLEPc.EPS.ProblemType.GHEP)
-        st = eps.getST()
-        st.setType(SLEPc.ST.Type.SINVERT)
-        st.setShift(sigma)
-        ksp = st.getKSP()
-        ksp.setType("preonly")
-        pc = ksp.getPC()
-        pc.setType("lu")
-        pc.setFactorSolverType("mumps")
-        eps.setWhichEigenpairs(SLEPc.EPS.Which.TARGET_MAGNITUDE)
-        eps.setTarget(sigma)
-        eps.setDimensions(nev, PETSc.DECIDE)
-        eps.setTolerances(tol, 300)
-        eps.solve()
-        nconv = eps.getConverged()
-        lams = np.array([eps.getEigenvalue(i).real for i in range(nconv)])
+        eps = shift_invert(K, M, nev, sigma, tol, 300)
+        lams = eigenvalues(eps)
+        nconv = len(lams)
         top = np.sqrt(max(lams.max(), 0.0)) / (2 * np.pi) if nconv else 0.0
         if nconv >= nev and top > fmax:
             break

@@ -162,7 +162,6 @@ def solve_3d(segs, h, E, nu, rho, nev, tol=1e-9) -> Solid3D:
     from dolfinx import fem
     from dolfinx.fem.petsc import assemble_matrix
     from petsc4py import PETSc
-    from slepc4py import SLEPc
 
     t0 = time.perf_counter()
     mesh, ft, bore_tag = revolved_mesh(segs, h)
@@ -188,23 +187,9 @@ def solve_3d(segs, h, E, nu, rho, nev, tol=1e-9) -> Solid3D:
     M = assemble_matrix(m_form)
     M.assemble()
 
-    eps_ = SLEPc.EPS().create(mesh.comm)
-    eps_.setOperators(K, Mb)
-    eps_.setProblemType(SLEPc.EPS.ProblemType.GHEP)
-    sigma = -(2 * np.pi * 5.0) ** 2
-    st = eps_.getST()
-    st.setType(SLEPc.ST.Type.SINVERT)
-    st.setShift(sigma)
-    ksp = st.getKSP()
-    ksp.setType("preonly")
-    pc = ksp.getPC()
-    pc.setType("lu")
-    pc.setFactorSolverType("mumps")
-    eps_.setWhichEigenpairs(SLEPc.EPS.Which.TARGET_MAGNITUDE)
-    eps_.setTarget(sigma)
-    eps_.setDimensions(nev, PETSc.DECIDE)
-    eps_.setTolerances(tol, 200)
-    eps_.solve()
+    from solvers.eigen import shift_invert
+
+    eps_ = shift_invert(K, Mb, nev, -(2 * np.pi * 5.0) ** 2, tol, 200, mesh.comm)
     nconv = eps_.getConverged()
     assert nconv >= nev, (nconv, nev)
     vr, _ = K.createVecs()
