@@ -2,7 +2,7 @@
 
 Runs each benchmark module's ``run() -> str`` (a markdown section) and
 writes them under a header naming the machine.  `python -m benchmarks wheel`
-runs a subset (the others keep their previous section out of the file).
+runs a subset and only prints it (docs/benchmarks.md is written by full runs).
 """
 from __future__ import annotations
 
@@ -38,7 +38,8 @@ def machine() -> str:
 
 
 def main(argv=None) -> int:
-    names = (sys.argv[1:] if argv is None else argv) or SUITES
+    chosen = sys.argv[1:] if argv is None else argv
+    names = chosen or SUITES
     sections = []
     for name in names:
         try:
@@ -56,11 +57,12 @@ Produced by `make bench` (`python -m benchmarks`) on {time.strftime('%Y-%m-%d')}
 runs unless a section says otherwise.
 
 """ + "\n\n".join(sections) + "\n"
-    OUT.parent.mkdir(exist_ok=True)
-    tmp = OUT.with_name(".benchmarks.md.tmp")
-    tmp.write_text(text)
-    os.replace(tmp, OUT)
     print(text)
+    if not chosen:
+        OUT.parent.mkdir(exist_ok=True)
+        tmp = OUT.with_name(".benchmarks.md.tmp")
+        tmp.write_text(text)
+        os.replace(tmp, OUT)
     return 0
 
 

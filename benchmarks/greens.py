@@ -10,25 +10,15 @@ waveguide-FE transfer receptance).
 """
 from __future__ import annotations
 
-import time
 
 import numpy as np
+
+from benchmarks.timing import median_time
 
 from solvers.green import (choose_grid, convolve_direct, convolve_fft, filter_history, green_from_receptance,
                            modal_filter, modal_kernel, moving_green, ring_convolver, ring_step)
 from solvers.receptance import wheel_receptance
 from tests.greens import DT, V, beam_transfer, wheel_case
-
-
-def _median(f, n, warm=1):
-    for _ in range(warm):
-        f()
-    t = []
-    for _ in range(n):
-        t0 = time.perf_counter()
-        f()
-        t.append(time.perf_counter() - t0)
-    return float(np.median(t))
 
 
 def _ring_loop(rc, F):
@@ -50,7 +40,7 @@ def run() -> str:
     w = wheel_case(-0.032)
     args = (w["f_hz"], w["modal_mass"], w["n"], w["phi"], w["zeta"])
     n_t = choose_grid(w["f_hz"], w["zeta"], DT)
-    t_green = _median(lambda: green_from_receptance(lambda f: wheel_receptance(f, *args), DT, n_t), 3)
+    t_green = median_time(lambda: green_from_receptance(lambda f: wheel_receptance(f, *args), DT, n_t), 3, warm=1)
     rows.append(f"| C20 wheel Green's function by Kropp's method, {len(w['f_hz'])} modes, G22/G33/G23, "
                 f"N_t = {n_t} from choose_grid ({n_t * DT:.0f} s, {n_t // 2 + 1} lags) | {t_green:.2f} s |")
     # recursive filters vs direct convolution
@@ -62,20 +52,19 @@ def run() -> str:
     nt = 200_000
     F = rng.standard_normal((nt, 2))
     filt = modal_filter(DT, fr, mr, z, phi)
-    t_b = _median(lambda: modal_filter(DT, fr, mr, z, phi), 5)
+    t_b = median_time(lambda: modal_filter(DT, fr, mr, z, phi), 5, warm=1)
     filter_history(filt.copy_reset(), F[:10])
-    t_f = _median(lambda: filter_history(filt.copy_reset(), F), 3)
+    t_f = median_time(lambda: filter_history(filt.copy_reset(), F), 3, warm=1)
     rows.append(f"| wheel recursive modal filters, {len(fr)} modes: build | {1e6 * t_b:.0f} us |")
     rows.append(f"| wheel recursive modal filters, {len(fr)} modes, per step (njit loop over {nt} steps) | "
                 f"{1e9 * t_f / nt:.0f} ns/step |")
-    t_s = _median(lambda: [filt.step(1.0, 2.0) for _ in range(10000)], 3) / 10000
+    t_s = median_time(lambda: [filt.step(1.0, 2.0) for _ in range(10000)], 3, warm=1) / 10000
     rows.append(f"| same, one `ModalFilter.step` call from Python | {1e6 * t_s:.1f} us/step |")
     for K in (2000, 20000):
         g = modal_kernel(K, DT, fr, mr, z, phi)
         Fd = F[:20000]
         convolve_direct(g[:10], Fd[:10])
-        t_d = _median(lambda: convolve_direct(g, Fd), 2)
-        steps = len(Fd) - 1
+        t_d = median_time(lambda: convolve_direct(g, Fd), 2, warm=1)
         # the work of a full kernel: every step sums K - 1 lags once the history is longer than K
         per = t_d / sum(min(n, K - 1) for n in range(1, len(Fd))) * (K - 1)
         rows.append(f"| direct convolution, kernel of {K} lags ({K * DT * 1e3:.0f} ms), per step at full length | "
@@ -87,20 +76,20 @@ def run() -> str:
     tr = beam_transfer()
     n_tr, n_k = 8192, 2000
     moving_green(tr, V, DT, 16, n_tr)
-    t_m = _median(lambda: moving_green(tr, V, DT, n_k, n_tr), 2)
+    t_m = median_time(lambda: moving_green(tr, V, DT, n_k, n_tr), 2, warm=1)
     rows.append(f"| rail moving Green's function, beam on damped foundation, {n_k} lags, N_t = {n_tr} "
                 f"({n_tr // 2 + 1} frequencies per lag) | {t_m:.2f} s |")
     zero = lambda x, f: np.zeros((len(x), len(f), 2, 2), complex)
-    t_m0 = _median(lambda: moving_green(zero, V, DT, n_k, n_tr), 2)
+    t_m0 = median_time(lambda: moving_green(zero, V, DT, n_k, n_tr), 2, warm=1)
     rows.append(f"| of which the construction itself (transfer receptance evaluation excluded) | {t_m0:.2f} s |")
     gr = moving_green(tr, V, DT, n_k, n_tr)
     rc = ring_convolver(gr)
     loop = _ring_loop(rc, F)
     loop(rc, F[:10])
-    t_r = _median(lambda: loop(rc, F), 2)
+    t_r = median_time(lambda: loop(rc, F), 2, warm=1)
     rows.append(f"| rail ring-buffer convolution, {n_k} lags, per step (njit loop over {nt} steps) | "
                 f"{1e6 * t_r / nt:.2f} us/step |")
-    t_fft = _median(lambda: convolve_fft(gr, F), 3)
+    t_fft = median_time(lambda: convolve_fft(gr, F), 3, warm=1)
     rows.append(f"| rail overlap-add FFT convolution of a whole history, {n_k} lags, {nt} steps ({nt * DT:.1f} s) | "
                 f"{t_fft:.2f} s ({1e9 * t_fft / nt:.0f} ns/step) |")
     return f"""## Green's functions

@@ -12,9 +12,10 @@ of the reference drivers (Python loop): per-step NORM and Kalker's transient TAN
 """
 from __future__ import annotations
 
-import time
 
 import numpy as np
+
+from benchmarks.timing import median_time
 
 from solvers.interaction import WheelModes, point_contact, simulate
 from tests.interaction import (CONTACT, DT, GAMMA_Y, RAIL, ROOT, V, beam_kernel, bv50_kernel, c20_modes,
@@ -22,15 +23,6 @@ from tests.interaction import (CONTACT, DT, GAMMA_Y, RAIL, ROOT, V, beam_kernel,
 
 RAIL_LAGS = 2048
 GREENS = ROOT / "build" / "cases" / "default" / "greens.npz"
-
-
-def _median(f, n):
-    t = []
-    for _ in range(n):
-        t0 = time.perf_counter()
-        f()
-        t.append(time.perf_counter() - t0)
-    return float(np.median(t))
 
 
 def run() -> str:
@@ -58,7 +50,7 @@ def run() -> str:
                                ("rail only (no wheel)", None, g, {}),
                                ("contact only (no structures)", None, None, {})):
         res = []
-        t = _median(lambda: res.append(simulate(w, k, contact, duration=8.0, **kw, **extra)), 3)
+        t = median_time(lambda: res.append(simulate(w, k, contact, duration=8.0, **kw, **extra)), 3)
         runs[label] = (t, res[-1])
     rows = []
     for label, (t, r) in runs.items():
@@ -82,7 +74,7 @@ def run() -> str:
     b = np.column_stack([1e-3 * rng.standard_normal(200_000), GAMMA_Y * V + 0.05 * rng.standard_normal(200_000)])
     args = (b, 1.26e-9 / DT, 65e3, contact.s_nodes, contact.mu_nodes, contact.slopes)
     loop(*args)
-    t_pc = _median(lambda: loop(*args), 3) / len(b)
+    t_pc = median_time(lambda: loop(*args), 3) / len(b)
     # reference drivers
     ref = []
     ref_note = ""
@@ -90,16 +82,16 @@ def run() -> str:
     short = dict(kw, duration=n_ref * DT, kick=(0.07, 0.07))
     if contact.gap is not None:
         simulate(wheel, g, contact, normal="norm", **dict(short, duration=5 * DT))
-        t_norm = _median(lambda: simulate(wheel, g, contact, normal="norm", **short), 1) / n_ref
+        t_norm = median_time(lambda: simulate(wheel, g, contact, normal="norm", **short), 1) / n_ref
         ref.append(f"| per-step NORM (warm-started active set, FFT CG; table point model otherwise) | "
                    f"{1e3 * t_norm:.2f} ms |")
-        t_py = _median(lambda: simulate(wheel, g, contact, driver="python", **short), 1) / n_ref
+        t_py = median_time(lambda: simulate(wheel, g, contact, driver="python", **short), 1) / n_ref
         ref.append(f"| the point model in the Python reference loop (same njit blocks, table NORM) | "
                    f"{1e6 * t_py:.0f} us |")
     if contact.pressure_nodes is not None:
         simulate(wheel, g, contact, tangential="kalker", **dict(short, duration=5 * DT))
-        t_k = _median(lambda: simulate(wheel, g, contact, tangential="kalker", **short), 3) / n_ref
-        t_kn = _median(lambda: simulate(wheel, g, contact, tangential="kalker", normal="norm", **short), 3) / n_ref
+        t_k = median_time(lambda: simulate(wheel, g, contact, tangential="kalker", **short), 3) / n_ref
+        t_kn = median_time(lambda: simulate(wheel, g, contact, tangential="kalker", normal="norm", **short), 3) / n_ref
         n_el = int((contact.pressure_nodes[np.argmin(np.abs(contact.xi3_nodes - r.xi3_static))] > 0).sum())
         ref.append(f"| Kalker's transient TANG per step ({n_el} contact elements, table pressures) | "
                    f"{1e3 * t_k:.1f} ms |")

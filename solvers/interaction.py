@@ -149,7 +149,7 @@ import numba
 import numpy as np
 
 from .contact.compliance import table_compliance
-from .contact.friction import mu_rf
+from .contact.friction import mu_and_slope, mu_rf
 from .contact.norm import table_force
 from .green import ModalFilter, filter_step, modal_filter, ring_convolver, ring_step
 
@@ -263,25 +263,6 @@ class StopRule:
 # njit building blocks
 # ----------------------------------------------------------------------------------------------
 
-@numba.njit(cache=True)
-def mu_and_slope(s, s_nodes, mu_nodes, slopes):
-    """mu_RF(|s|) (the same monotone Hermite formula as ``friction.mu_rf``) and its
-    derivative d mu_RF / d|s| (0 on the plateau beyond the last node)."""
-    s = abs(s)
-    n = s_nodes.shape[0]
-    if s >= s_nodes[n - 1]:
-        return mu_nodes[n - 1], 0.0
-    k = np.searchsorted(s_nodes, s, side="right") - 1
-    if k < 0:
-        k = 0
-    h = s_nodes[k + 1] - s_nodes[k]
-    t = (s - s_nodes[k]) / h
-    t2, t3 = t * t, t * t * t
-    val = ((2 * t3 - 3 * t2 + 1) * mu_nodes[k] + (t3 - 2 * t2 + t) * h * slopes[k]
-           + (-2 * t3 + 3 * t2) * mu_nodes[k + 1] + (t3 - t2) * h * slopes[k + 1])
-    der = ((6 * t2 - 6 * t) * (mu_nodes[k] - mu_nodes[k + 1]) / h + (3 * t2 - 4 * t + 1) * slopes[k]
-           + (3 * t2 - 2 * t) * slopes[k + 1])
-    return val, der
 
 
 @numba.njit(cache=True)

@@ -99,18 +99,28 @@ def rf_curve(p3, dx, dy, v, mu, E=210e9, nu=0.3, *, gammas=None, n_bend=18, n_pl
 
 
 @numba.njit(cache=True)
-def mu_rf(s, s_nodes, mu_nodes, slopes):
-    """mu_RF at slip velocity |s| [m/s]: monotone cubic Hermite between the nodes,
-    constant beyond the last node (full slip plateau)."""
+def mu_and_slope(s, s_nodes, mu_nodes, slopes):
+    """mu_RF(|s|) and its derivative d mu_RF / d|s|: monotone cubic Hermite
+    between the nodes, constant (derivative 0) beyond the last node (the full
+    slip plateau)."""
     s = abs(s)
     n = s_nodes.shape[0]
     if s >= s_nodes[n - 1]:
-        return mu_nodes[n - 1]
+        return mu_nodes[n - 1], 0.0
     k = np.searchsorted(s_nodes, s, side="right") - 1
     if k < 0:
         k = 0
     h = s_nodes[k + 1] - s_nodes[k]
     t = (s - s_nodes[k]) / h
     t2, t3 = t * t, t * t * t
-    return ((2 * t3 - 3 * t2 + 1) * mu_nodes[k] + (t3 - 2 * t2 + t) * h * slopes[k]
-            + (-2 * t3 + 3 * t2) * mu_nodes[k + 1] + (t3 - t2) * h * slopes[k + 1])
+    val = ((2 * t3 - 3 * t2 + 1) * mu_nodes[k] + (t3 - 2 * t2 + t) * h * slopes[k]
+           + (-2 * t3 + 3 * t2) * mu_nodes[k + 1] + (t3 - t2) * h * slopes[k + 1])
+    der = ((6 * t2 - 6 * t) * (mu_nodes[k] - mu_nodes[k + 1]) / h + (3 * t2 - 4 * t + 1) * slopes[k]
+           + (3 * t2 - 2 * t) * slopes[k + 1])
+    return val, der
+
+
+@numba.njit(cache=True)
+def mu_rf(s, s_nodes, mu_nodes, slopes):
+    """mu_RF at slip velocity |s| [m/s] (see ``mu_and_slope``)."""
+    return mu_and_slope(s, s_nodes, mu_nodes, slopes)[0]
