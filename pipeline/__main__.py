@@ -6,6 +6,7 @@ atomically and exits non-zero with a one-paragraph message on bad input.
 from __future__ import annotations
 
 import argparse
+import importlib
 import logging
 import sys
 
@@ -17,8 +18,21 @@ STAGES = {
     "contact": "contact of the case: gap, NORM table, compliance, friction curves -> build/cases/<case>/contact.npz",
     "greens": "wheel Green's function (Kropp, modal filters) and moving rail Green's function -> greens.npz",
     "simulate": "time-domain wheel/rail interaction of the case (numba) -> build/cases/<case>/simulate.npz",
-    "report": "gather the case's results (so far: wheel modes and gallery) -> build/report/<case>/report.md",
+    "report": "gather the case's results (wheel, rail, contact, Green's functions, interaction) -> build/report/<case>/report.md",
     "check": "validate the configuration files only (no computation)",
+}
+
+
+# stage -> (module of pipeline/, function, the CLI argument it takes)
+RUNNERS = {
+    "mesh": ("wheel_stage", "run_mesh", "wheel"),
+    "modes": ("wheel_stage", "run_modes", "wheel"),
+    "shapes": ("wheel_stage", "run_shapes", "wheel"),
+    "rail": ("rail_stage", "run_rail", "rail"),
+    "contact": ("contact_stage", "run_contact", "case"),
+    "greens": ("greens_stage", "run_greens", "case"),
+    "simulate": ("simulate_stage", "run_simulate", "case"),
+    "report": ("report", "run_report", "case"),
 }
 
 
@@ -56,38 +70,10 @@ def main(argv=None) -> int:
                 raise ConfigError(str(case_path), detail=f"no such case; available: {paths.available(paths.CASES)}")
             load(case_path, CASE)
             print(f"wheel {args.wheel}, rail {args.rail} and case {args.case}: configuration OK")
-        elif args.stage == "mesh":
-            from .wheel_stage import run_mesh
-
-            run_mesh(args.wheel)
-        elif args.stage == "modes":
-            from .wheel_stage import run_modes
-
-            run_modes(args.wheel, args.workers)
-        elif args.stage == "rail":
-            from .rail_stage import run_rail
-
-            run_rail(args.rail)
-        elif args.stage == "contact":
-            from .contact_stage import run_contact
-
-            run_contact(args.case)
-        elif args.stage == "greens":
-            from .greens_stage import run_greens
-
-            run_greens(args.case)
-        elif args.stage == "simulate":
-            from .simulate_stage import run_simulate
-
-            run_simulate(args.case)
-        elif args.stage == "report":
-            from .report import run_report
-
-            run_report(args.case)
-        elif args.stage == "shapes":
-            from .wheel_stage import run_shapes
-
-            run_shapes(args.wheel)
+        else:
+            module, func, arg = RUNNERS[args.stage]
+            run = getattr(importlib.import_module(f".{module}", __package__), func)
+            run(getattr(args, arg), *([args.workers] if args.stage == "modes" else []))
     except (ConfigError, ArtifactError) as e:
         print(f"error: {e}", file=sys.stderr)
         return 2

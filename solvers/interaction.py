@@ -392,6 +392,24 @@ def _stop_decision(iw, win_stats, need, rms_tol, f_tol, decay_abs):
 
 
 @numba.njit(cache=True)
+def _record_window(F2, F3, done, wbuf, jw, iw, nw, dt, win_stats, min_steps, need, rms_tol, f_tol, decay_abs):
+    """Store (F2, F3) in the window buffer; at a full window, close it and
+    decide whether to stop.  Returns (jw, iw, reason), reason 0 = go on."""
+    wbuf[jw, 0] = F2
+    wbuf[jw, 1] = F3
+    jw += 1
+    reason = 0
+    if jw == nw:
+        jw = 0
+        if iw < win_stats.shape[0]:
+            _end_window(iw, wbuf, nw, dt, done * dt, win_stats)
+            if done >= min_steps:
+                reason = _stop_decision(iw, win_stats, need, rms_tol, f_tol, decay_abs)
+            iw += 1
+    return jw, iw, reason
+
+
+@numba.njit(cache=True)
 def _run_point(filt, rc, n_steps, dt, v, gx, gy, xi3_static, F_ref, u_ref, kick, slip_sign,
                xi3_nodes, q_nodes, A1_nodes, A2_nodes, s_nodes, mu_nodes, slopes, eps,
                store_every, hist, fin, nw, wbuf, win_stats, need, rms_tol, f_tol, decay_abs, min_steps,
@@ -463,18 +481,10 @@ def _run_point(filt, rc, n_steps, dt, v, gx, gy, xi3_static, F_ref, u_ref, kick,
         xi3 = r3 + w3
         done = n + 1
         if nw > 0:
-            wbuf[jw, 0] = F2
-            wbuf[jw, 1] = F3
-            jw += 1
-            if jw == nw:
-                jw = 0
-                if iw < win_stats.shape[0]:
-                    _end_window(iw, wbuf, nw, dt, done * dt, win_stats)
-                    if done >= min_steps:
-                        reason = _stop_decision(iw, win_stats, need, rms_tol, f_tol, decay_abs)
-                    iw += 1
-                    if reason != 0:
-                        break
+            jw, iw, reason = _record_window(F2, F3, done, wbuf, jw, iw, nw, dt, win_stats, min_steps, need,
+                                            rms_tol, f_tol, decay_abs)
+            if reason != 0:
+                break
     return done, reason
 
 
@@ -817,15 +827,8 @@ def _run_reference(filt, rc, n_steps, dt, v, gx, gy, xi3_static, F_ref, u_ref, k
         xi2, xi3 = r2 + w2, r3 + w3
         done = n + 1
         if nw > 0:
-            wbuf[jw] = (F2, F3)
-            jw += 1
-            if jw == nw:
-                jw = 0
-                if iw < win_stats.shape[0]:
-                    _end_window(iw, wbuf, nw, dt, done * dt, win_stats)
-                    if done >= min_steps:
-                        reason = _stop_decision(iw, win_stats, need, rms_tol, f_tol, decay_abs)
-                    iw += 1
-                    if reason != 0:
-                        break
+            jw, iw, reason = _record_window(F2, F3, done, wbuf, jw, iw, nw, dt, win_stats, min_steps, need,
+                                            rms_tol, f_tol, decay_abs)
+            if reason != 0:
+                break
     return done, reason, F_ref
