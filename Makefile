@@ -27,12 +27,13 @@ RAIL_SRC     := geometry/rail.py geometry/mesher.py solvers/waveguide.py solvers
 CONTACT_SRC  := $(wildcard solvers/contact/*.py) pipeline/contact_stage.py geometry/wheel.py geometry/rail.py
 GREENS_SRC   := solvers/green.py solvers/receptance.py solvers/rail_response.py pipeline/greens_stage.py
 SIM_SRC      := solvers/interaction.py pipeline/simulate_stage.py postprocess/spectra.py
+RADIATE_SRC  := postprocess/radiation.py postprocess/force_radiation.py postprocess/spectra.py solvers/receptance.py geometry/wheel.py pipeline/radiate_stage.py
 
 .DEFAULT_GOAL := all
-.PHONY: all help setup test validate bench mesh modes rail contact greens simulate report check clean distclean
+.PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate report check clean distclean
 .DELETE_ON_ERROR:
 
-all: report ## run the default case as far as the stages exist (wheel, rail, contact, greens, simulate, report)
+all: report ## run the default case as far as the stages exist (wheel, rail, contact, greens, simulate, radiate, report)
 
 help: ## list the targets
 	@grep -hE '^[a-z][a-zA-Z_-]*:.*## ' $(MAKEFILE_LIST) | sed 's/:.*## /\t/' | awk -F'\t' '{printf "  %-10s %s\n", $$1, $$2}'
@@ -82,7 +83,10 @@ $(C)/greens.npz: $(CFILE) $(W)/modes.npz $(R)/rail.npz $(GREENS_SRC) | $(STAMP)
 $(C)/simulate.npz: $(CFILE) $(C)/contact.npz $(C)/greens.npz $(SIM_SRC) | $(STAMP)
 	$(PY) -m pipeline simulate --case $(CASE)
 
-$(BUILD)/report/$(CASE)/report.md: $(CFILE) $(W)/modes.npz $(W)/shapes/gallery.png $(R)/rail.npz $(C)/contact.npz $(C)/greens.npz $(C)/simulate.npz pipeline/report.py | $(STAMP)
+$(C)/radiate.npz: $(CFILE) $(W)/modes.npz $(C)/simulate.npz $(RADIATE_SRC) | $(STAMP)
+	$(PY) -m pipeline radiate --case $(CASE)
+
+$(BUILD)/report/$(CASE)/report.md: $(CFILE) $(W)/modes.npz $(W)/shapes/gallery.png $(R)/rail.npz $(C)/contact.npz $(C)/greens.npz $(C)/simulate.npz $(C)/radiate.npz pipeline/report.py | $(STAMP)
 	$(PY) -m pipeline report --case $(CASE)
 
 mesh: $(W)/mesh.json ## Gmsh cross-section of WHEEL -> build/wheels/WHEEL/section.msh
@@ -91,6 +95,7 @@ rail: $(R)/rail.npz ## rail section, waveguide FE, dispersion, receptances (RAIL
 contact: $(C)/contact.npz ## contact of CASE: gap, NORM table, compliance, friction curves
 greens: $(C)/greens.npz ## Green's functions of CASE: wheel (Kropp + modal filters), moving rail kernel
 simulate: $(C)/simulate.npz ## time-domain interaction of CASE: force histories, L_F2, dominant frequency
+radiate: $(C)/radiate.npz ## sound power of CASE's wheel under the simulated forces: W(f), L_W, per harmonic, unit-force curves
 report: $(BUILD)/report/$(CASE)/report.md ## one Markdown report of CASE (WHEEL, RAIL must be the case's)
 
 # --- quality

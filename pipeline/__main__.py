@@ -18,8 +18,10 @@ STAGES = {
     "contact": "contact of the case: gap, NORM table, compliance, friction curves -> build/cases/<case>/contact.npz",
     "greens": "wheel Green's function (Kropp, modal filters) and moving rail Green's function -> greens.npz",
     "simulate": "time-domain wheel/rail interaction of the case (numba) -> build/cases/<case>/simulate.npz",
+    "radiate": "sound power of the wheel under the simulated contact forces (Thompson-Jones) -> radiate.npz",
     "report": "gather the case's results (wheel, rail, contact, Green's functions, interaction) -> build/report/<case>/report.md",
     "check": "validate the configuration files only (no computation)",
+    "study": "a parameter study on Dask (SPEC 7): --study map|damping|contact -> build/studies/<study>/",
 }
 
 
@@ -32,6 +34,7 @@ RUNNERS = {
     "contact": ("contact_stage", "run_contact", "case"),
     "greens": ("greens_stage", "run_greens", "case"),
     "simulate": ("simulate_stage", "run_simulate", "case"),
+    "radiate": ("radiate_stage", "run_radiate", "case"),
     "report": ("report", "run_report", "case"),
 }
 
@@ -44,7 +47,14 @@ def main(argv=None) -> int:
     ap.add_argument("--wheel", default="c20", help="wheel parameter file geometry/wheels/<name>.toml (default c20)")
     ap.add_argument("--rail", default="bv50", help="rail parameter file geometry/rails/<name>.toml (default bv50)")
     ap.add_argument("--case", default="default", help="case file pipeline/cases/<name>.toml (default: default)")
-    ap.add_argument("--workers", type=int, default=None, help="processes for the harmonic solves (default: cores)")
+    ap.add_argument("--workers", type=int, default=None,
+                    help="processes for the harmonic solves, Dask workers of a study's local cluster (default: cores)")
+    ap.add_argument("--study", default="map", help="study file pipeline/studies/<name>.toml (default: map)")
+    ap.add_argument("--quick", action="store_true", help="study: the coarser grid / shorter runs for a quick look")
+    ap.add_argument("--scheduler", default=None, help="study: address of a Dask scheduler (tcp://host:port) "
+                                                      "instead of a local cluster")
+    ap.add_argument("--out", default=None, help="study: output folder (default build/studies/<study>[-quick])")
+    ap.add_argument("--no-progress", action="store_true", help="study: no progress bar")
     ap.add_argument("-v", "--verbose", action="count", default=0, help="more logging (-vv for debug)")
     ap.add_argument("-q", "--quiet", action="store_true", help="warnings and errors only")
     args = ap.parse_args(argv)
@@ -70,6 +80,11 @@ def main(argv=None) -> int:
                 raise ConfigError(str(case_path), detail=f"no such case; available: {paths.available(paths.CASES)}")
             load(case_path, CASE)
             print(f"wheel {args.wheel}, rail {args.rail} and case {args.case}: configuration OK")
+        elif args.stage == "study":
+            from .study_stage import run_study
+
+            print(run_study(args.study, quick=args.quick, scheduler=args.scheduler, workers=args.workers,
+                            out=args.out, progress=not args.no_progress))
         else:
             module, func, arg = RUNNERS[args.stage]
             run = getattr(importlib.import_module(f".{module}", __package__), func)
