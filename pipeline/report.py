@@ -1,6 +1,6 @@
 """Report: one self-contained Markdown file (figures copied beside it) that
 gathers what the stages produced for a case.  Sections appear as their
-stages exist; today: the wheel (mode table and mode-shape gallery).
+stages exist: wheel, rail, contact, Green's functions, interaction, radiation.
 
 Output: build/report/<case>/report.md and its figures.
 """
@@ -118,6 +118,32 @@ def simulate_section(case: str, figdir) -> str:
 """
 
 
+def radiate_section(case: str, figdir) -> str:
+    from .radiate_stage import load_radiation_model, radiate_config
+
+    a, _ = artifacts.load_npz(paths.case_dir(case) / "radiate.npz", "radiate",
+                              radiate_config(case, load_radiation_model(case))[1], make_target=f"radiate CASE={case}")
+    shutil.copy2(paths.case_dir(case) / "radiate.png", figdir / f"{case}_radiate.png")
+    rows = ["| n | L_W (dB re 1e-12 W) | share | peak (Hz) | nearest mode of that n | its f (Hz) |", "|---:|---:|---:|---:|---|---:|"]
+    for i, n in enumerate(a["harmonics"]):
+        rows.append(f"| {n} | {a['harmonic_L_W'][i]:.1f} | {100 * a['harmonic_W'][i] / a['W_total']:.2f} % | "
+                    f"{a['harmonic_f_peak'][i]:.1f} | {a['harmonic_mode_label'][i]} | {a['harmonic_mode_f'][i]:.1f} |"
+                    if a["W_total"] > 0 else f"| {n} | -inf | - | - | - | - |")
+    flag = ("" if a["meaningful"] else
+            f" L_F2 = {float(a['L_F2']):.1f} dB < 10 dB: no squeal, the sound power is not meaningful (SPEC 6).")
+    return f"""## Sound radiation
+
+Thompson-Jones model (SPEC 5) driven by the final {float(a['stretch_s']):.2f} s of F2, F3: {len(a['tone_f'])} tones
+fitted at their own frequencies plus the Hann-windowed residual.{flag}
+Overall L_W = {float(a['L_W']):.1f} dB re 1e-12 W; loudest at {float(a['f_sound']):.1f} Hz, the
+{a['sound_mode_label']} mode ({float(a['sound_mode_f']):.1f} Hz); dominant force frequency {float(a['f_dominant']):.1f} Hz.
+
+![sound power](figures/{case}_radiate.png)
+
+{chr(10).join(rows)}
+"""
+
+
 def run_report(case: str) -> str:
     cpath = paths.case_file(case)
     c = load(cpath, CASE)
@@ -133,6 +159,7 @@ def run_report(case: str) -> str:
     sections.append(contact_section(case, contact_inputs(case)[3], figdir))
     sections.append(greens_section(case, figdir))
     sections.append(simulate_section(case, figdir))
+    sections.append(radiate_section(case, figdir))
     text = "\n".join(sections)
     with artifacts.atomic_write(out / "report.md") as tmp:
         tmp.write_text(text)

@@ -96,11 +96,23 @@ def _stages_after_touching(path, built):
 
 
 def test_touching_wheel_file_rebuilds_only_wheel_stages_and_dependents(built):
-    assert _stages_after_touching("geometry/wheels/c20.toml", built) == ["mesh", "modes", "shapes", "contact", "greens", "simulate", "report"]
+    assert _stages_after_touching("geometry/wheels/c20.toml", built) == ["mesh", "modes", "shapes", "contact", "greens", "simulate", "radiate", "report"]
 
 
 def test_touching_rail_file_rebuilds_only_rail_stages_and_dependents(built):
-    assert _stages_after_touching("geometry/rails/bv50.toml", built) == ["rail", "contact", "greens", "simulate", "report"]
+    assert _stages_after_touching("geometry/rails/bv50.toml", built) == ["rail", "contact", "greens", "simulate", "radiate", "report"]
+
+
+def test_touching_radiation_source_rebuilds_only_radiate_and_report(built):
+    assert _stages_after_touching("postprocess/radiation.py", built) == ["radiate", "report"]
+
+
+def test_make_builds_radiate_artifacts(built):
+    c = built / "cases" / "default"
+    for f in ("radiate.npz", "radiate.png", "radiate_harmonics.csv"):
+        assert (c / f).exists(), f
+    assert (c / "radiate_harmonics.csv").read_text().splitlines()[0] == "n,W_W,L_W_dB,share,f_peak_hz,mode,mode_f_hz"
+    assert "## Sound radiation" in (built / "report" / "default" / "report.md").read_text()
 
 
 def test_killed_stage_leaves_no_complete_artifact(built, tmp_path):
