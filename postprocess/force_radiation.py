@@ -195,7 +195,7 @@ def _prominent(P, k: int, ratio: float) -> bool:
     return bool(peak > 0 and ring.size and peak > ratio * np.median(ring))
 
 
-def refine_frequency(x, dt: float, f_est: float, half_width: float, steps: int = 7) -> float:
+def refine_frequency(x, dt: float, f_est: float, half_width: float, steps: int = 5) -> float:
     """Frequency of the maximum of the Hann-windowed DTFT |sum w x exp(-2 pi i f t)| near
     f_est: parabolas through log|DTFT| at f - h, f, f + h (vertex clipped to +- h), h from
     half_width shrinking 4-fold per step (the main lobe is smooth and unimodal)."""
@@ -227,8 +227,9 @@ def _fit_tones(X, w, t, freqs):
         return np.zeros((0, 2), complex), np.zeros_like(X)
     ph = 2 * np.pi * np.outer(t, freqs)
     D = np.hstack([np.cos(ph), np.sin(ph)])
-    s = np.sqrt(w)[:, None]
-    c, *_ = np.linalg.lstsq(s * D, s * X, rcond=None)
+    Dw = D * w[:, None]
+    # normal equations: tones >= 2 bins apart are nearly orthogonal under the Hann weight
+    c = np.linalg.solve(Dw.T @ D, Dw.T @ X)
     T = len(freqs)
     amp = (c[:T] - 1j * c[T:]) / np.sqrt(2)  # a cos + b sin = Re((a - i b) e^{i w t}); RMS = peak / sqrt 2
     return amp, D @ c
@@ -288,8 +289,8 @@ def decompose_forces(F2, F3, dt: float, *, f_min: float = 20.0, f_max: float = 6
         Y = X - fit
         if len(freqs) >= MAX_TONES:
             break
-    amp, fit = _fit_tones(X, w, t, np.array(freqs))
-    Y = X - fit
+    if not freqs:
+        amp = np.zeros((0, 2), complex)
     f, R2 = amplitude_spectrum(Y[:, 0], dt, scaling="power")
     _, R3 = amplitude_spectrum(Y[:, 1], dt, scaling="power")
     keep = (f > 0) & (f <= f_max)
