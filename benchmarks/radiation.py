@@ -1,0 +1,54 @@
+"""Radiation benchmarks (pipeline/radiate_stage.py, postprocess/force_radiation.py): `run() -> str`.
+
+    OMP_NUM_THREADS=1 .venv/bin/python -m benchmarks radiation
+
+The default case's model (C20 modes at y^W = -32 mm, build/wheels/c20/modes.npz) loaded once, then
+`sound_power_of_forces` on the simulation's final stretch (build/cases/default/simulate.npz, 0.5 s at
+36 us; without it a synthetic squeal tone with two harmonics at the (3,0,a) mode), the call the studies
+make per simulation; and the two unit-force curves on the stage's frequency grid.
+"""
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from benchmarks.timing import median_time
+from pipeline import paths
+from pipeline.radiate_stage import F_MAX, load_radiation_model, sound_power_of_forces
+from postprocess.force_radiation import frequency_grid_for, unit_force_curve
+
+
+def run() -> str:
+    t0 = time.perf_counter()
+    model = load_radiation_model("default")
+    t_load = time.perf_counter() - t0
+    sim = paths.case_dir("default") / "simulate.npz"
+    if sim.exists():
+        with np.load(sim) as d:
+            F, dt = d["F_final"], float(np.median(np.diff(d["t_final"])))
+        src = "build/cases/default/simulate.npz"
+    else:
+        dt, n = 36e-6, 13889
+        t = np.arange(n) * dt
+        f0 = model.f_r[np.flatnonzero((model.n == 3) & (model.m == 0) & (model.cls == "a"))[0]] - 2.0
+        F = np.column_stack([np.zeros(n), 1500 * np.cos(2 * np.pi * f0 * t) + 150 * np.cos(4 * np.pi * f0 * t),
+                             65e3 + 600 * np.cos(2 * np.pi * f0 * t + 1.2)])
+        src = "a synthetic squeal tone at the (3,0,a) mode"
+    res = []
+    t_call = median_time(lambda: res.append(sound_power_of_forces(model, F, dt)), 20, warm=2)
+    r = res[-1]
+    fu = frequency_grid_for(model, 100.0, F_MAX)
+    t_unit = median_time(lambda: (unit_force_curve(model, fu, "lateral"), unit_force_curve(model, fu, "radial")), 5)
+    return f"""## Radiation
+
+Model of the default case ({model.f_r.size} C20 modes, harmonics 0..{int(model.harmonics.max())}, contact at
+y^W = {1e3 * model.meta['y_wheel']:+.0f} mm): loaded in {t_load:.2f} s (modes artifact, surfaces, Gram matrices).
+
+| step | wall |
+|---|---:|
+| `sound_power_of_forces`, {len(F)} samples ({src}: {len(r['decomposition'].tone_f)} tones, L_W = {r['L_W']:.1f} dB) | {1e3 * t_call:.0f} ms |
+| unit lateral + radial curves, {fu.size} frequencies (100 Hz - {F_MAX / 1e3:.1f} kHz) | {1e3 * t_unit:.0f} ms |
+
+Median of 20 calls after 2 warm-up calls.
+"""
