@@ -1,0 +1,104 @@
+"""What a study's cases run with, loaded once on the client from a case's artifacts (checked
+against the case's configuration like every stage does) and scattered to the Dask workers:
+the contact tables and friction curves, the wheel's modal data at the contact point with the
+mode labels, the rail's moving Green's function, the case settings and, when the radiate stage
+exists, the wheel's radiation model.  ``inputs`` hashes all of it plus the source of the code
+that computes a case, so a study's stored rows go stale when any of it changes.
+"""
+from __future__ import annotations
+
+import hashlib
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from . import artifacts, paths
+from .config import config_hash
+
+# the code a study row depends on (hashed into its inputs); missing files are skipped
+CODE = ["solvers/interaction.py", "solvers/green.py", "solvers/study.py", "postprocess/spectra.py",
+        "pipeline/study_worker.py", "solvers/contact/*.py", "postprocess/radiation.py",
+        "postprocess/force_radiation.py", "pipeline/radiate_stage.py", "solvers/receptance.py"]
+
+
+def code_hash() -> str:
+    h = hashlib.sha256()
+    for pattern in CODE:
+        for p in sorted(paths.ROOT.glob(pattern)):
+            h.update(p.relative_to(paths.ROOT).as_posix().encode())
+            h.update(p.read_bytes())
+    return h.hexdigest()[:16]
+
+
+@dataclass(frozen=True)
+class CaseContext:
+    """One contact position's data for the workers (picklable; SI units)."""
+    case: str
+    inputs: str
+    dy_wr: float
+    dt: float
+    v: float
+    preload: float
+    gamma_x: float
+    gamma_y: float
+    mu: float
+    tangential: str
+    normal: str
+    contact: dict
+    wheel: dict            # f, mass, zeta, phi (modes, 2), n, m, cls, kind
+    rail_kernel: np.ndarray
+    radiation: Any = None  # pipeline.radiate_stage.load_radiation_model(case), or None
+    radiation_note: str = ""
+    extra: dict = field(default_factory=dict)
+
+    @property
+    def flexible(self) -> np.ndarray:
+        return np.asarray(self.wheel["kind"]).astype(str) == "flexible"
+
+    def label(self, i: int) -> str:
+        w = self.wheel
+        return f"({int(w['n'][i])},{int(w['m'][i])},{w['cls'][i]})"
+
+
+def radiation_api():
+    """(load_radiation_model, sound_power_of_forces) of the radiate stage, or None before it exists."""
+    try:
+        from .radiate_stage import load_radiation_model, sound_power_of_forces
+    except ImportError:
+        return None
+    return load_radiation_model, sound_power_of_forces
+
+
+def load_context(case: str, *, radiation: bool = True, zeta_overrides: dict | None = None) -> CaseContext:
+    """The CaseContext of ``case`` from build/cases/<case>/contact.npz, greens.npz and the wheel's
+    modes.npz (ArtifactError when missing or stale, naming the make target).  ``zeta_overrides``
+    {mode: zeta} only for the radiation model (the simulation's damping is set per task)."""
+    from .contact_stage import contact_inputs
+    from .greens_stage import greens_inputs
+
+    c, _, _, ccfg = contact_inputs(case)
+    _, _, _, modes, _, gcfg = greens_inputs(case)      # the wheel modes, checked against the wheel file
+    cdir = paths.case_dir(case)
+    con, cprov = artifacts.load_npz(cdir / "contact.npz", "contact", ccfg, make_target=f"contact CASE={case}")
+    gr, gprov = artifacts.load_npz(cdir / "greens.npz", "greens", gcfg, make_target=f"greens CASE={case}")
+    if len(modes["f_hz"]) != len(gr["wheel_f"]) or not np.allclose(modes["f_hz"], gr["wheel_f"]):
+        raise artifacts.ArtifactError(cdir / "greens.npz", f"its wheel modes are not those of "
+                                      f"{paths.wheel_dir(c['wheel']) / 'modes.npz'}; run `make greens CASE={case}`")
+    wheel = {"f": gr["wheel_f"], "mass": gr["wheel_mass"], "zeta": gr["wheel_zeta"], "phi": gr["wheel_phi"],
+             "n": modes["n"], "m": modes["m"], "cls": modes["cls"].astype(str), "kind": modes["kind"].astype(str)}
+    model, note = None, ""
+    api = radiation_api() if radiation else None
+    if api is not None:
+        model = api[0](case, zeta_overrides)
+    else:
+        note = "no radiation model (pipeline/radiate_stage.py not present)" if radiation else "not requested"
+    inputs = config_hash({"contact": cprov["config_hash"], "greens": gprov["config_hash"],
+                         "code": code_hash(), "radiation": model is not None,
+                         "zeta_overrides": {str(k): float(v) for k, v in (zeta_overrides or {}).items()}})
+    return CaseContext(case=case, inputs=inputs, dy_wr=c["contact"]["dy_wr"], dt=c["time"]["dt"],
+                       v=c["kinematics"]["speed"], preload=c["loading"]["preload"],
+                       gamma_x=c["kinematics"]["gamma_x"], gamma_y=c["kinematics"]["gamma_y"],
+                       mu=c["friction"]["mu"], tangential=c["contact"]["model"], normal=c["contact"]["normal"],
+                       contact=con, wheel=wheel, rail_kernel=gr["rail_kernel"], radiation=model,
+                       radiation_note=note)

@@ -1,0 +1,139 @@
+"""Wheel modal damping study (SPEC 7), automated: solvers.study.damping_procedure decides which
+simulations it needs (the full model, then the squealing mode alone with the suspension at
+bisected damping values, ...); they run on Dask through the study runner and are stored in the
+table under their labels, so a resumed study replays the procedure from the table and only
+runs what is missing.
+
+Outputs: table.csv (every simulation), steps.csv (per step: full-model L_F2 and frequency, the
+squealing mode, its critical damping bracket), damping.png, summary.md.
+"""
+from __future__ import annotations
+
+import logging
+from pathlib import Path
+
+import numpy as np
+
+from .config import config_hash
+from .results_table import ResultsTable
+from .study_runner import Task, pending, run_tasks
+
+log = logging.getLogger("pipeline.study")
+
+COLUMNS = {"step": int, "model": str, "mode": int, "zeta_mode": float, "n_modes": int, "L_F2": float,
+           "f_dominant": float, "F2_pp": float, "F2_mean": float, "contact_loss": float, "stop_reason": str,
+           "t_end": float, "L_W": float, "f_sound": float, "wall_s": float, "worker": str}
+STEP_COLUMNS = ["step", "L_F2", "f_dominant", "mode", "label", "f_mode", "zeta_nominal", "zeta_lo", "zeta_hi",
+                "bisection_model", "runs", "excluded", "note"]
+
+
+def operating(spec: dict, ctx) -> tuple[float, float]:
+    op = spec["operating"]
+    return (ctx.mu if op["mu"] is None else op["mu"]), (ctx.gamma_y if op["gamma_y"] is None else op["gamma_y"])
+
+
+def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool = True) -> dict:
+    from tqdm import tqdm
+
+    from solvers.study import Outcome, damping_procedure
+
+    from .study_context import load_context
+    from .study_worker import damping_case
+
+    case = spec["cases"][0]
+    ctx = load_context(case, radiation=False)
+    mu, gamma_y = operating(spec, ctx)
+    sim, bis, proc = spec["simulation"], spec["bisection"], spec["procedure"]
+    if quick:
+        bis = bis | {"rel_tol": max(bis["rel_tol"], 0.25)}
+    inputs = config_hash({"context": ctx.inputs, "simulation": sim, "mu": mu, "gamma_y": gamma_y})
+    table = ResultsTable(out / "table.csv", COLUMNS)
+    table.open({inputs})
+    gen = damping_procedure(ctx.wheel["zeta"], ctx.wheel["f"], ctx.flexible, level=sim["squeal_level"],
+                            zeta_max=bis["zeta_max"], rel_tol=bis["rel_tol"], max_steps=proc["max_steps"],
+                            mode_match=proc["mode_match"])
+    stats = {"total": 0, "done_before": 0, "submitted": 0}
+    bar = tqdm(unit="run", desc=spec["name"], disable=not progress, dynamic_ncols=True)
+    keys = []
+    try:
+        batch = next(gen)
+        while True:
+            tasks = [Task(r.label, inputs, case,
+                          {"step": r.step, "model": r.model, "mode": r.mode, "modes": list(r.modes),
+                           "zeta": list(r.zeta), "zeta_mode": r.zeta[r.mode] if r.mode >= 0 else float("nan"),
+                           "mu": mu, "gamma_y": gamma_y, "duration": sim["duration"],
+                           "early_stop": sim["early_stop"], "final": sim["final"], "level": sim["squeal_level"]})
+                     for r in batch]
+            todo = pending(tasks, table)
+            stats["total"] += len(tasks)
+            stats["done_before"] += len(tasks) - len(todo)
+            stats["submitted"] += len(todo)
+            if todo:
+                run_tasks(tasks, damping_case, table, client.get(), {case: ctx}, desc=spec["name"], progress=False)
+            bar.update(len(tasks))
+            keys += [t.key for t in tasks]
+            rows = [table.rows[t.key] for t in tasks]
+            try:
+                batch = gen.send([Outcome(r["L_F2"], r["f_dominant"]) for r in rows])
+            except StopIteration as stop:
+                result = stop.value
+                break
+    finally:
+        bar.close()
+    write_outputs(spec, src, out, quick, ctx, mu, gamma_y, bis, result, [table.rows[k] for k in keys])
+    return stats
+
+
+def write_outputs(spec, src, out: Path, quick, ctx, mu, gamma_y, bis, result, rows) -> None:
+    from postprocess.study_plots import damping_figure
+
+    from .artifacts import save_csv
+    from .study_stage import save_figure, write_text
+
+    level = spec["simulation"]["squeal_level"]
+    steps = []
+    for s in result.steps:
+        d = dict(vars(s))
+        d["mode"] = -1 if s.mode is None else s.mode
+        d["label"] = ctx.label(s.mode) if s.mode is not None else ""
+        d["f_mode"] = float(ctx.wheel["f"][s.mode]) if s.mode is not None else float("nan")
+        d["excluded"] = " ".join(ctx.label(j) for j in s.excluded)
+        steps.append(d)
+    save_csv(out / "steps.csv", STEP_COLUMNS, ([d[c] for c in STEP_COLUMNS] for d in steps))
+    labels = {i: ctx.label(i) for i in range(len(ctx.wheel["f"]))}
+    title = (f"{ctx.case}: dy_WR = {1e3 * ctx.dy_wr:.0f} mm, mu = {mu:g}, gamma_y = {gamma_y:g}; "
+             f"bisection to zeta_hi/zeta_lo - 1 <= {bis['rel_tol']:g}")
+    save_figure(damping_figure(steps, rows, labels, title, level), out / "damping.png")
+    lines = ["| step | full model L_F2 (dB) | f (Hz) | squealing mode | f_mode (Hz) | zeta before | critical zeta "
+             "bracket | bisection in | runs | note |", "|---:|---:|---:|---|---:|---:|---|---|---:|---|"]
+    for d in steps:
+        br = f"{d['zeta_lo']:.3g} .. {d['zeta_hi']:.3g}" if np.isfinite(d["zeta_hi"]) else ""
+        lines.append(f"| {d['step']} | {d['L_F2']:.1f} | {d['f_dominant']:.0f} | {d['label']} | "
+                     f"{d['f_mode']:.0f} | {d['zeta_nominal']:.3g} | {br} | {d['bisection_model']} | {d['runs']} | "
+                     f"{d['note']} |".replace("| nan |", "|  |"))
+    crit = [d for d in steps if np.isfinite(d["zeta_hi"])]
+    walls = np.array([r["wall_s"] for r in rows], float)
+    text = f"""# Study `{spec['name']}`{' (quick)' if quick else ''}: wheel modal damping (SPEC 7)
+
+{spec['description']}
+
+Definition `{src}`; case `{ctx.case}` (dy_WR = {1e3 * ctx.dy_wr:.0f} mm), mu = {mu:g}, gamma_y = {gamma_y:g}.
+Procedure (solvers/study.py `damping_procedure`): simulate the full wheel model; if it squeals (L_F2 >= {level:g} dB)
+at a wheel mode (dominant frequency within {100 * spec['procedure']['mode_match']:g} % of the mode's), find that
+mode's squeal-critical damping with a wheel of only that mode plus the suspension modes (rail and contact as in the
+case) by geometric bisection between its present damping and zeta_max = {bis['zeta_max']:g}, to the tolerance
+zeta_hi / zeta_lo - 1 <= {bis['rel_tol']:g} (squeal at zeta_lo, none at zeta_hi); put zeta_hi into the full model
+and repeat. When the mode does not squeal alone, or squeals again in the full model, the bisection runs in the full
+model. {len(rows)} simulations (at most {spec['simulation']['duration']:g} s of rolling each), worker time
+{walls.sum():.0f} s.
+
+**Result: {result.end}.** Succession of squealing modes: {' -> '.join(d['label'] for d in steps if d['label']) or 'none'}.
+Critical damping: {', '.join(f"{d['label']} {d['zeta_lo']:.3g} .. {d['zeta_hi']:.3g}" for d in crit) or 'none found'}.
+
+{chr(10).join(lines)}
+
+![damping study](damping.png)
+
+Tables: `steps.csv` (this table), `table.csv` (every simulation: step, model, mode, zeta_mode, L_F2, ...).
+"""
+    write_text(out / "summary.md", text)

@@ -1,0 +1,123 @@
+"""Study stage (SPEC 7): ``python -m pipeline study --study NAME [--quick] [--scheduler ADDR]
+[--workers N] [--out DIR]``.
+
+A study is defined by pipeline/studies/<NAME>.toml (schemas in pipeline/study_schemas.py):
+``kind = "map"`` (creepage/friction map), ``"damping"`` (wheel modal damping study) or
+``"contact"`` (contact-model validation).  The cases run on Dask (pipeline/study_runner.py),
+their rows are appended to the study's table as they finish; rerunning the command resumes an
+interrupted study and only renders the outputs of a finished one.
+
+Outputs in build/studies/<NAME>/ (``<NAME>-quick`` with --quick): the table(s) (CSV), PNG
+figures, summary.md and runs.jsonl (one line per run: cases in total, already done, submitted,
+wall time, workers).
+"""
+from __future__ import annotations
+
+import contextlib
+import importlib
+import json
+import logging
+import os
+import time
+import tomllib
+from pathlib import Path
+
+from . import artifacts, paths
+from .config import ConfigError, load
+from .study_schemas import COMMON, KINDS, SCHEMAS
+
+log = logging.getLogger("pipeline.study")
+
+STUDIES = Path(os.environ.get("SQUEAL_STUDY_DIR", paths.ROOT / "pipeline" / "studies"))
+
+
+def study_file(name: str) -> Path:
+    return STUDIES / f"{name}.toml"
+
+
+def load_study(name: str) -> tuple[dict, str]:
+    """The validated study definition and its path."""
+    path = study_file(name)
+    if not path.exists():
+        raise ConfigError(str(path), detail=f"no such study; available: {paths.available(STUDIES)}")
+    try:
+        kind = tomllib.loads(path.read_text()).get("kind")
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError):
+        kind = None                                  # load() reports the syntax error
+    schema = SCHEMAS.get(kind, COMMON) if isinstance(kind, str) else COMMON
+    spec = load(path, schema)                        # an unknown kind fails here, naming the key
+    if spec["kind"] not in KINDS:                    # pragma: no cover - the schema's choices catch it
+        raise ConfigError(str(path), [("kind", spec["kind"], f"one of {list(KINDS)}")])
+    for case in spec["cases"]:
+        if not paths.case_file(case).exists():
+            raise ConfigError(str(path), [("cases", case, f"a case in {paths.CASES}: "
+                                                          f"{paths.available(paths.CASES)}")])
+    return spec, str(path)
+
+
+class LazyClient:
+    """A Dask client made on first use (a finished study starts no cluster)."""
+
+    def __init__(self, scheduler: str | None, workers: int | None):
+        self.scheduler, self.workers = scheduler, workers
+        self._stack = contextlib.ExitStack()
+        self._client = None
+
+    def get(self):
+        if self._client is None:
+            from .study_runner import study_client
+
+            t0 = time.perf_counter()
+            self._client = self._stack.enter_context(study_client(self.scheduler, self.workers))
+            n = len(self._client.scheduler_info().get("workers", {}))
+            log.info("dask: %s with %d workers (%.1f s to start)", self.scheduler or "local cluster", n,
+                     time.perf_counter() - t0)
+        return self._client
+
+    def close(self):
+        self._stack.close()
+        self._client = None
+
+
+def log_run(out: Path, record: dict) -> None:
+    """Append one JSON line to <out>/runs.jsonl (the study's run history)."""
+    out.mkdir(parents=True, exist_ok=True)
+    with open(out / "runs.jsonl", "a") as fh:
+        fh.write(json.dumps(record, sort_keys=True) + "\n")
+        fh.flush()
+        os.fsync(fh.fileno())
+
+
+def run_study(name: str, *, quick: bool = False, scheduler: str | None = None, workers: int | None = None,
+              out: str | os.PathLike | None = None, progress: bool = True) -> Path:
+    """Run (or resume) the study ``name``; returns the path of its summary.md."""
+    spec, src = load_study(name)
+    out = Path(out) if out else paths.BUILD / "studies" / (spec["name"] + ("-quick" if quick else ""))
+    out.mkdir(parents=True, exist_ok=True)
+    mod = importlib.import_module(f".study_{spec['kind']}", __package__)
+    client = LazyClient(scheduler, workers)
+    t0 = time.perf_counter()
+    try:
+        stats = mod.run(spec, src, out, quick=quick, client=client, progress=progress)
+    finally:
+        client.close()
+    record = {"time": time.strftime("%Y-%m-%dT%H:%M:%S"), "study": spec["name"], "quick": quick,
+              "scheduler": scheduler or "local", "workers": workers or (os.cpu_count() if not scheduler else None),
+              "wall_s": round(time.perf_counter() - t0, 3)} | stats
+    log_run(out, record)
+    log.info("study %s: %d cases, %d already done, %d run in %.1f s -> %s", spec["name"], stats["total"],
+             stats["done_before"], stats["submitted"], record["wall_s"], out / "summary.md")
+    return out / "summary.md"
+
+
+def write_text(path: Path, text: str) -> None:
+    with artifacts.atomic_write(path) as tmp:
+        tmp.write_text(text)
+
+
+def save_figure(fig, path: Path, dpi: int = 90) -> None:
+    import matplotlib.pyplot as plt
+
+    with artifacts.atomic_write(path) as tmp:
+        fig.savefig(tmp, dpi=dpi)
+    plt.close(fig)

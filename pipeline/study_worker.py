@@ -1,0 +1,128 @@
+"""The cases of the studies as run on a Dask worker: ``fn(context, params) -> row`` (a dict of
+scalars) for the study runner.  The context (pipeline/study_context.CaseContext) arrives once
+per worker process; what derives from it (the contact model of each mu) is cached per process,
+and numba is warmed once per process before the first case is timed.
+
+Every case simulates with solvers.interaction.simulate from the steady rolling state plus the
+default kick (SPEC 3.5), at most ``duration`` s, stopping early at a limit cycle or after decay
+unless ``early_stop`` is false; squeal measures over the final 0.5 s (SPEC 6); sound power
+(L_W, its dominant frequency) with the radiate stage's model for squealing cases only
+(L_F2 >= the squeal level, SPEC 6).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from solvers.interaction import StopRule, WheelModes, contact_model, simulate
+from solvers.study import harmonic_response, periodic_creepage, squeals
+
+_CONTACT: dict = {}
+_WARM: set = set()
+NAN = float("nan")
+CASE_MODEL = object()      # _measures: the context's own radiation model
+
+
+def _contact(ctx, mu: float):
+    key = (ctx.case, ctx.inputs, round(mu, 6))
+    if key not in _CONTACT:
+        _CONTACT[key] = contact_model(ctx.contact, mu)
+    return _CONTACT[key]
+
+
+def _warm(ctx, tangential: str) -> None:
+    """Compile (or load from numba's cache) the time loop once per process, outside the timing."""
+    if tangential in _WARM:
+        return
+    cm = _contact(ctx, ctx.mu)
+    simulate(_wheel(ctx), ctx.rail_kernel, cm, dt=ctx.dt, v=ctx.v, gamma_y=ctx.gamma_y, preload=ctx.preload,
+             duration=20 * ctx.dt, tangential=tangential, normal=ctx.normal, stop=None, final=0)
+    _WARM.add(tangential)
+
+
+def _wheel(ctx, zeta=None, modes=None) -> WheelModes:
+    w = ctx.wheel
+    z = np.asarray(w["zeta"] if zeta is None else zeta, float)
+    idx = np.arange(len(w["f"])) if modes is None else np.asarray(modes, int)
+    return WheelModes(w["f"][idx], w["mass"][idx], z[idx], w["phi"][idx])
+
+
+def _run(ctx, wheel, p, *, gamma_y=None, tangential=None, rail=True, kick=None):
+    cm = _contact(ctx, p["mu"])
+    tangential = tangential or ctx.tangential
+    _warm(ctx, tangential)
+    return simulate(wheel, ctx.rail_kernel if rail else None, cm, dt=ctx.dt, v=ctx.v,
+                    gamma_y=p["gamma_y"] if gamma_y is None else gamma_y, gamma_x=ctx.gamma_x,
+                    preload=ctx.preload, duration=p["duration"], tangential=tangential, normal=ctx.normal,
+                    stop=StopRule() if p.get("early_stop", True) else None, kick=kick,
+                    store_every=max(1, int(round(0.01 / ctx.dt))), final=p.get("final", 0.5))
+
+
+def _measures(ctx, res, p, radiation=CASE_MODEL) -> dict:
+    """Squeal measures; L_W and f_sound (radiate stage) when the case squeals and a model exists."""
+    m = res.measures()
+    row = {"L_F2": m["L_F2"], "f_dominant": m["f_dominant"], "F2_pp": m["F2_pp"], "F2_mean": m["F2_mean"],
+           "contact_loss": m["contact_loss_share"], "stop_reason": res.stop_reason, "t_end": res.duration,
+           "L_W": NAN, "f_sound": NAN}
+    model = ctx.radiation if radiation is CASE_MODEL else radiation
+    if model is not None and squeals(m["L_F2"], p.get("level", 10.0)):
+        from pipeline.radiate_stage import sound_power_of_forces
+
+        s = sound_power_of_forces(model, res.F_final, res.dt_final or res.dt)
+        row["L_W"], row["f_sound"] = float(s["L_W"]), float(s["f_sound"])
+    if not math.isfinite(row["L_F2"]):
+        row["L_F2"] = NAN
+    return row
+
+
+# ----------------------------------------------------------------------------------------------
+# the cases of each study
+# ----------------------------------------------------------------------------------------------
+
+def map_case(ctx, p) -> dict:
+    """Creepage/friction map (SPEC 7): the full wheel model at (gamma_y, mu)."""
+    row = {"case": ctx.case, "dy_wr": ctx.dy_wr, "gamma_y": p["gamma_y"], "mu": p["mu"]}
+    return row | _measures(ctx, _run(ctx, _wheel(ctx), p), p)
+
+
+def damping_case(ctx, p) -> dict:
+    """Wheel modal damping study (SPEC 7): the wheel of modes ``p['modes']`` with damping
+    ``p['zeta']`` (full-length vector)."""
+    res = _run(ctx, _wheel(ctx, p["zeta"], p["modes"]), p)
+    row = {"step": p["step"], "model": p["model"], "mode": p["mode"], "zeta_mode": p["zeta_mode"],
+           "n_modes": len(p["modes"])}
+    return row | _measures(ctx, res, p, radiation=None)
+
+
+def mode_case(ctx, p) -> dict:
+    """Contact-model validation in dynamic conditions (SPEC 7): every mode kept, damping
+    ``p['zeta']`` (one flexible mode lightly damped, the others at zeta = 1), rail kept; point
+    contact or Kalker's transient model (``p['model']``).  Sound power with the radiation model
+    of the same damping (ctx.extra['radiation'][mode], when there)."""
+    res = _run(ctx, _wheel(ctx, p["zeta"]), p, tangential=p["model"], kick=p.get("kick"))
+    return _measures(ctx, res, p, radiation=ctx.extra.get("radiation", {}).get(p["mode"]))
+
+
+def creepage_case(ctx, p) -> dict:
+    """Stand-alone contact validation (SPEC 7): rigid, fixed wheel and rail, prescribed creepage
+    gamma_y(t) = g0 + ga sin(2 pi f t); F2 over the last ``periods`` periods: mean, amplitude and
+    phase at f, peak-to-peak."""
+    f = p["f"]
+    n = int(round(p["duration"] / ctx.dt))
+    gy = periodic_creepage(p["gamma_0"], p["amplitude"], f, ctx.dt, n)
+    cm = _contact(ctx, p["mu"])
+    _warm(ctx, p["model"])
+    res = simulate(None, None, cm, dt=ctx.dt, v=ctx.v, gamma_y=gy, gamma_x=ctx.gamma_x, preload=ctx.preload,
+                   duration=n * ctx.dt, tangential=p["model"], normal=ctx.normal, stop=None, kick=0.0,
+                   final=p["duration"])
+    h = harmonic_response(res.F_final[:, 1], res.dt_final or ctx.dt, f, p["periods"])
+    return {"F2_mean": h["mean"], "F2_amplitude": h["amplitude"], "F2_phase": h["phase"], "F2_pp": h["pp"]}
+
+
+def contact_case(ctx, p) -> dict:
+    """Contact-model validation: a mode case or a prescribed-creepage case, with its identity."""
+    row = {"case": ctx.case, "part": p["part"], "model": p["model"]}
+    if p["part"] == "mode":
+        return row | {"mode": p["mode"], "label": p["label"], "f_mode": p["f_mode"]} | mode_case(ctx, p)
+    return row | {"f": p["f"]} | creepage_case(ctx, p)

@@ -1,0 +1,160 @@
+"""Figures of the parameter studies (SPEC 7), from arrays; each function returns a matplotlib
+figure (the pipeline saves it)."""
+from __future__ import annotations
+
+import numpy as np
+
+
+def _plt():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def _edges(x):
+    x = np.asarray(x, float)
+    if x.size == 1:
+        w = 0.5 * abs(x[0]) if x[0] else 0.5
+        return np.array([x[0] - w, x[0] + w])
+    mid = 0.5 * (x[1:] + x[:-1])
+    return np.concatenate([[2 * x[0] - mid[0]], mid, [2 * x[-1] - mid[-1]]])
+
+
+MAP_PANELS = (("L_F2", "L_F2 (dB re 1 N)", "magma"), ("f_dominant", "dominant F2 frequency (Hz)", "viridis"),
+              ("L_W", "L_W (dB re 1e-12 W)", "magma"), ("f_sound", "dominant sound frequency (Hz)", "viridis"))
+
+
+def map_figure(gamma_y, mu, fields: dict, title: str, level: float = 10.0):
+    """Colour maps over (gamma_y, mu) of the four map measures: fields[name] (len(mu), len(gamma_y)),
+    NaN where undefined (grey).  The frequencies are shown for squealing cases only (L_F2 >= level);
+    the L_F2 map carries the squeal contour."""
+    plt = _plt()
+    fig, axs = plt.subplots(2, 2, figsize=(11, 7.5), sharex=True, sharey=True)
+    gx, my = _edges(np.abs(gamma_y)), _edges(mu)
+    L = np.asarray(fields["L_F2"], float)
+    squeal = np.isfinite(L) & (L >= level)
+    for ax, (name, label, cmap) in zip(axs.flat, MAP_PANELS):
+        z = np.array(fields[name], float)
+        if name.startswith("f_"):
+            z[~squeal] = np.nan
+        ax.set_facecolor("0.85")
+        ok = np.isfinite(z)
+        if ok.any():
+            im = ax.pcolormesh(gx, my, np.ma.masked_invalid(z), cmap=cmap, shading="flat",
+                               vmin=np.nanmin(z), vmax=np.nanmax(z) if np.nanmax(z) > np.nanmin(z) else None)
+            fig.colorbar(im, ax=ax, label=label)
+        else:
+            ax.text(0.5, 0.5, "no squealing case" if name != "L_F2" else "no data", ha="center", va="center",
+                    transform=ax.transAxes, color="0.3")
+        if name == "L_F2" and squeal.any() and (~squeal).any() and L.shape[0] > 1 and L.shape[1] > 1:
+            ax.contour(np.abs(gamma_y), mu, np.where(np.isfinite(L), L, -1e3), levels=[level], colors="w",
+                       linewidths=1.2)
+        ax.set_title(label + ("" if name == "L_F2" else f" (L_F2 >= {level:g} dB)"), fontsize=9)
+    for ax in axs[1]:
+        ax.set_xlabel("|gamma_y|")
+    for ax in axs[:, 0]:
+        ax.set_ylabel("mu")
+    fig.suptitle(title)
+    fig.tight_layout()
+    return fig
+
+
+def damping_figure(steps: list, runs: list, labels: dict, title: str, level: float = 10.0):
+    """The damping study: L_F2 of the full model per step (annotated with the squealing mode) and
+    every bisection run (L_F2 over the damping of the mode varied, per step), with the critical
+    brackets.  ``steps``: DampingStep-like dicts; ``runs``: dicts with step, model, mode,
+    zeta_mode, L_F2."""
+    plt = _plt()
+    fig, axs = plt.subplots(1, 2, figsize=(12, 4.5))
+    k = [s["step"] for s in steps]
+    L = [s["L_F2"] if np.isfinite(s["L_F2"]) else np.nan for s in steps]
+    axs[0].plot(k, L, "o-", color="k")
+    axs[0].axhline(level, color="C3", ls="--", lw=1, label=f"squeal level {level:g} dB")
+    for s in steps:
+        if s.get("mode") is not None and s["mode"] >= 0 and np.isfinite(s["L_F2"]):
+            axs[0].annotate(labels.get(s["mode"], str(s["mode"])), (s["step"], s["L_F2"]),
+                            textcoords="offset points", xytext=(4, 6), fontsize=8)
+    axs[0].set_xlabel("step")
+    axs[0].set_ylabel("L_F2 of the full model (dB re 1 N)")
+    axs[0].set_xticks(k)
+    axs[0].legend(fontsize=8)
+    axs[0].set_title("succession of squealing modes")
+    for j, s in enumerate(steps):
+        pts = [r for r in runs if r["step"] == s["step"] and r["mode"] >= 0]
+        if not pts:
+            continue
+        pts.sort(key=lambda r: r["zeta_mode"])
+        z = [r["zeta_mode"] for r in pts]
+        y = [r["L_F2"] if np.isfinite(r["L_F2"]) else np.nan for r in pts]
+        lab = f"step {s['step']}: {labels.get(s['mode'], s['mode'])} ({s.get('bisection_model', '')})"
+        axs[1].semilogx(z, y, "o-", ms=4, color=f"C{j}", label=lab)
+        if np.isfinite(s.get("zeta_hi", np.nan)):
+            axs[1].axvspan(s["zeta_lo"], s["zeta_hi"], color=f"C{j}", alpha=0.25)
+    axs[1].axhline(level, color="C3", ls="--", lw=1)
+    axs[1].set_xlabel("damping ratio of the mode varied")
+    axs[1].set_ylabel("L_F2 (dB re 1 N)")
+    axs[1].set_title("bisection runs; shaded: squeal-critical bracket")
+    if axs[1].lines:
+        axs[1].legend(fontsize=7)
+    fig.suptitle(title)
+    fig.tight_layout()
+    return fig
+
+
+def contact_modes_figure(rows: list, title: str):
+    """Point contact vs Kalker per mode: F2 peak-to-peak and L_W against the mode frequency, and
+    their relative differences.  ``rows``: dicts with f_mode, label, F2_pp_point, F2_pp_kalker,
+    L_W_point, L_W_kalker, d_F2_pp, d_L_W."""
+    plt = _plt()
+    fig, axs = plt.subplots(2, 2, figsize=(12, 7), sharex=True)
+    f = np.array([r["f_mode"] for r in rows], float)
+    for model, mk in (("point", "o"), ("kalker", "s")):
+        axs[0, 0].semilogy(f, [max(r[f"F2_pp_{model}"], 1e-12) for r in rows], mk, label=model, mfc="none")
+        axs[1, 0].plot(f, [r[f"L_W_{model}"] for r in rows], mk, label=model, mfc="none")
+    axs[0, 1].plot(f, [100 * r["d_F2_pp"] for r in rows], "ko")
+    axs[1, 1].plot(f, [r["d_L_W"] for r in rows], "ko")
+    for r in rows:
+        axs[0, 0].annotate(r["label"], (r["f_mode"], max(r["F2_pp_point"], 1e-12)), fontsize=7,
+                           textcoords="offset points", xytext=(3, 3))
+    axs[0, 0].set_ylabel("F2 peak-to-peak (N)")
+    axs[1, 0].set_ylabel("L_W (dB re 1e-12 W)")
+    axs[0, 1].set_ylabel("(point - Kalker) / Kalker, F2 pp (%)")
+    axs[1, 1].set_ylabel("L_W point - L_W Kalker (dB)")
+    for ax in axs.flat:
+        ax.grid(alpha=0.3)
+    for ax in axs[1]:
+        ax.set_xlabel("frequency of the mode kept (Hz)")
+    axs[0, 0].legend(fontsize=8)
+    axs[1, 0].legend(fontsize=8)
+    fig.suptitle(title)
+    fig.tight_layout()
+    return fig
+
+
+def creepage_figure(rows: list, title: str):
+    """Prescribed creepage: amplitude and phase of F2 at the excitation frequency, point vs
+    Kalker, over frequency.  ``rows``: dicts with f, model, F2_amplitude, F2_phase, F2_mean."""
+    plt = _plt()
+    fig, axs = plt.subplots(1, 3, figsize=(13, 4))
+    for model, mk in (("point", "o-"), ("kalker", "s--")):
+        rr = sorted((r for r in rows if r["model"] == model), key=lambda r: r["f"])
+        if not rr:
+            continue
+        f = [r["f"] for r in rr]
+        axs[0].semilogx(f, [r["F2_amplitude"] for r in rr], mk, label=model, mfc="none")
+        axs[1].semilogx(f, [np.degrees(np.angle(np.exp(1j * r["F2_phase"]))) for r in rr], mk, label=model,
+                        mfc="none")
+        axs[2].semilogx(f, [r["F2_mean"] for r in rr], mk, label=model, mfc="none")
+    axs[0].set_ylabel("F2 amplitude at f (N)")
+    axs[1].set_ylabel("F2 phase at f (deg)")
+    axs[2].set_ylabel("F2 mean (N)")
+    for ax in axs:
+        ax.set_xlabel("creepage frequency f (Hz)")
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize=8)
+    fig.suptitle(title)
+    fig.tight_layout()
+    return fig
