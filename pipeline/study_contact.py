@@ -127,6 +127,11 @@ def paired(rows: list, part: str, by: str) -> list[dict]:
     return res
 
 
+def _f(x, fmt: str) -> str:
+    """Format a number, '-' for NaN (e.g. L_W of a case that does not squeal)."""
+    return "-" if not np.isfinite(x) else format(x, fmt)
+
+
 def write_outputs(spec, src, out: Path, quick, contexts, tasks, table, duration) -> None:
     from postprocess.study_plots import contact_modes_figure, creepage_figure
 
@@ -153,8 +158,9 @@ def write_outputs(spec, src, out: Path, quick, contexts, tasks, table, duration)
           "|---|---|---:|---:|---:|---:|---:|---:|---:|---|---|---|"]
     for r in modes:
         ml.append(f"| {r['case']} | {r['label']} | {r['f_mode']:.0f} | {r['F2_pp_point']:.4g} | {r['F2_pp_kalker']:.4g} "
-                  f"| {100 * r['d_F2_pp']:+.1f} % | {r['L_W_point']:.1f} | {r['L_W_kalker']:.1f} | {r['d_L_W']:+.1f} | "
-                  f"{r['f_point']:.0f} / {r['f_kalker']:.0f} | {r['stop_point']} / {r['stop_kalker']} | "
+                  f"| {_f(100 * r['d_F2_pp'], '+.1f')} % | {_f(r['L_W_point'], '.1f')} | {_f(r['L_W_kalker'], '.1f')} | "
+                  f"{_f(r['d_L_W'], '+.1f')} | {_f(r['f_point'], '.0f')} / {_f(r['f_kalker'], '.0f')} | "
+                  f"{r['stop_point']} / {r['stop_kalker']} | "
                   f"{r['wall_point']:.1f} / {r['wall_kalker']:.1f} |")
     cl = ["| case | f (Hz) | F2 amplitude point (N) | Kalker (N) | rel. diff | phase diff (deg) | F2 mean rel. diff | "
           "wall point / Kalker (s) |", "|---|---:|---:|---:|---:|---:|---:|---|"]

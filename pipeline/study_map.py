@@ -134,7 +134,7 @@ def write_outputs(spec, src, out: Path, quick: bool, contexts: dict, tasks: list
             parts.append(f"Loudest: gamma_y = {gammas[j]:g}, mu = {mus[i]:g}: L_F2 = {L[i, j]:.1f} dB at "
                          f"{F['f_dominant'][i, j]:.0f} Hz, L_W = {F['L_W'][i, j]:.1f} dB at {F['f_sound'][i, j]:.0f} Hz.\n")
         head = "| gamma_y \\ mu | " + " | ".join(f"{m:g}" for m in mus) + " |"
-        lines = [f"L_F2 (dB re 1 N; **bold**: squeal, f in Hz):\n", head, "|---:|" + "---:|" * len(mus)]
+        lines = ["L_F2 (dB re 1 N; **bold**: squeal, f in Hz):\n", head, "|---:|" + "---:|" * len(mus)]
         for j, gy in enumerate(gammas):
             cells = []
             for i in range(len(mus)):
