@@ -2,7 +2,7 @@
 # `make` sets up the machine and runs the default case as far as the stages
 # exist; `make test` sets up and runs the test suite.  Select inputs with
 # WHEEL=<name> (geometry/wheels/<name>.toml), RAIL=<name> (geometry/rails/),
-# CASE=<name> (pipeline/cases/).
+# CASE=<name> (pipeline/cases/), STUDY=<name> (pipeline/studies/).
 
 WHEEL ?= c20
 RAIL  ?= bv50
@@ -16,6 +16,9 @@ C     := $(BUILD)/cases/$(CASE)
 WFILE := geometry/wheels/$(WHEEL).toml
 RFILE := geometry/rails/$(RAIL).toml
 CFILE := pipeline/cases/$(CASE).toml
+STUDY ?= map
+# the cases a study runs on: its `cases = [...]` line (read without Python)
+STUDY_CASES = $(shell sed -n 's/^cases *= *\[\(.*\)\].*/\1/p' pipeline/studies/$(STUDY).toml | tr -d '",')
 export SQUEAL_BUILD_DIR := $(abspath $(BUILD))
 export VTK_DEFAULT_OPENGL_WINDOW ?= vtkEGLRenderWindow
 export OMP_NUM_THREADS ?= 1
@@ -30,7 +33,7 @@ SIM_SRC      := solvers/interaction.py pipeline/simulate_stage.py postprocess/sp
 RADIATE_SRC  := postprocess/radiation.py postprocess/force_radiation.py postprocess/spectra.py solvers/receptance.py geometry/wheel.py pipeline/radiate_stage.py
 
 .DEFAULT_GOAL := all
-.PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate report check clean distclean
+.PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate report study check clean distclean
 .DELETE_ON_ERROR:
 
 all: report ## run the default case as far as the stages exist (wheel, rail, contact, greens, simulate, radiate, report)
@@ -97,6 +100,11 @@ greens: $(C)/greens.npz ## Green's functions of CASE: wheel (Kropp + modal filte
 simulate: $(C)/simulate.npz ## time-domain interaction of CASE: force histories, L_F2, dominant frequency
 radiate: $(C)/radiate.npz ## sound power of CASE's wheel under the simulated forces: W(f), L_W, per harmonic, unit-force curves
 report: $(BUILD)/report/$(CASE)/report.md ## one Markdown report of CASE (WHEEL, RAIL must be the case's)
+
+# --- studies (SPEC 7): the cases' artifacts first, then the study on Dask (resumes when interrupted)
+study: | $(STAMP) ## parameter study STUDY=map|damping|contact on Dask -> build/studies/STUDY/; QUICK=1, WORKERS=N, SCHEDULER=tcp://host:port
+	@for c in $(STUDY_CASES); do $(MAKE) --no-print-directory contact greens CASE=$$c || exit 1; done
+	$(PY) -m pipeline study --study $(STUDY) $(if $(QUICK),--quick) $(if $(WORKERS),--workers $(WORKERS)) $(if $(SCHEDULER),--scheduler $(SCHEDULER))
 
 # --- quality
 test: | $(STAMP) ## run the test suite (fast; validation tests are skipped)
