@@ -10,6 +10,7 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -81,6 +82,20 @@ def test_make_builds_wheel_artifacts(built):
         assert (w / f).exists(), f
     header = (w / "modes.csv").read_text().splitlines()[0].split(",")
     assert header[:4] == ["f_hz", "n", "m", "class"]
+
+
+def test_default_case_squeals_at_an_axial_mode(built):
+    """Issue 7: `make` runs the default case end to end and it squeals (a limit cycle, L_F2 >= 10 dB,
+    SPEC 6) at an (n,0,a) wheel mode: the dominant F2 frequency within 1 % of the eigenfrequency of
+    such a mode (n >= 2) or of one of its harmonics."""
+    with np.load(built / "cases" / "default" / "simulate.npz") as s, \
+            np.load(built / "wheels" / "c20" / "modes.npz") as w:
+        stop, L, f = str(s["stop_reason"]), float(s["L_F2"]), float(s["f_dominant"])
+        sel = (w["cls"] == "a") & (w["m"] == 0) & (w["n"] >= 2) & (w["kind"] == "flexible")
+        f_modes = w["f_hz"][sel]
+    assert stop == "limit cycle" and L >= 10.0, (stop, L)
+    harmonics = np.outer(f_modes, [1, 2, 3])
+    assert np.abs(f / harmonics - 1).min() < 0.01, (f, f_modes)
 
 
 def test_nothing_reruns_when_nothing_changed(built):

@@ -58,17 +58,18 @@ def test_ramp_reproduces_the_friction_curve(contact):
     assert np.abs(slow.F[:, 1] / slow.F[:, 2] - rigid).max() < 1e-3
 
 
-@pytest.mark.parametrize("mu, gamma_y", [(0.1, GAMMA_Y), (0.35, -0.002)])
+@pytest.mark.parametrize("mu, gamma_y", [(0.35, -GAMMA_Y), (0.35, -0.002)])
 def test_stable_case_decays_to_the_steady_force(squealer, mu, gamma_y):
-    """Low friction (full slip, the coupling kappa turns stabilising) or small creepage (the
+    """Creepage of the opposite sign (full slip with F2 < 0: the coupling kappa = Phi_3 (Phi_3 -
+    mu Phi_2) > 0 turns stabilising) or small creepage (the
     micro-slip slope damps the lateral motion): the kick dies out, the run stops as 'decayed'
-    at F2 = mu_RF(|gamma_y| v) F3, F3 = preload."""
+    at F2 = -sign(gamma_y) mu_RF(|gamma_y| v) F3, F3 = preload."""
     wheel, g = squealer[DT]
     c = default_contact(mu)
     r = simulate(wheel, g, c, dt=DT, v=V, gamma_y=gamma_y, duration=8.0, kick=(0.025, 0.025))
     assert r.stop_reason == "decayed", r.windows[-3:]
     assert r.duration < 8.0 and r.lost_steps == 0
-    F2s = mu_rf(abs(gamma_y) * V, c.s_nodes, c.mu_nodes, c.slopes) * PRELOAD
+    F2s = -np.sign(gamma_y) * mu_rf(abs(gamma_y) * V, c.s_nodes, c.mu_nodes, c.slopes) * PRELOAD
     last = r.F_final[-1]
     assert abs(last[1] - F2s) < 1e-5 * PRELOAD and abs(last[2] - PRELOAD) < 1e-5 * PRELOAD
     assert abs(r.F_ref[1] - F2s) < 1e-9 * PRELOAD
@@ -89,7 +90,8 @@ def test_reduced_model_squeals_and_converges_in_dt(contact, squealer):
     a, b = out[DT], out[DT / 2]
     assert abs(a["L_F2"] - b["L_F2"]) < 1.0
     assert abs(a["f_dominant"] / b["f_dominant"] - 1) < 5e-3
-    assert 1100 < a["f_dominant"] < 1200           # the (3,0,a) mode at 1161 Hz
+    wheel = squealer[DT][0]                        # at one of its two modes
+    assert np.abs(a["f_dominant"] / wheel.f_r - 1).min() < 0.01, (a["f_dominant"], wheel.f_r)
     # decimated history: the same run, every 10th step kept, the final stretch at full rate
     wheel, g = squealer[DT]
     full = simulate(wheel, g, contact, dt=DT, v=V, gamma_y=GAMMA_Y, duration=1.0, stop=None, final=0.2)
