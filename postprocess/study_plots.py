@@ -97,7 +97,7 @@ def damping_figure(steps: list, runs: list, labels: dict, title: str, level: flo
     axs[1].set_xlabel("damping ratio of the mode varied")
     axs[1].set_ylabel("L_F2 (dB re 1 N)")
     axs[1].set_title("bisection runs; shaded: squeal-critical bracket")
-    if axs[1].lines:
+    if any(not ln.get_label().startswith("_") for ln in axs[1].lines):
         axs[1].legend(fontsize=7)
     fig.suptitle(title)
     fig.tight_layout()
