@@ -10,18 +10,23 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 
 
+def _ok(code: str) -> bool:
+    return subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True).returncode == 0
+
+
+def _stage(*args: str) -> None:
+    subprocess.run([sys.executable, "-m", "pipeline", *args, "-q"], cwd=ROOT, check=True)
+
+
 def ensure_case(case: str = "default") -> None:
-    check = f"from pipeline.study_context import load_context; load_context({case!r}, radiation=False)"
-    if subprocess.run([sys.executable, "-c", check], cwd=ROOT, capture_output=True).returncode == 0:
+    if _ok(f"from pipeline.study_context import load_context; load_context({case!r}, radiation=False)"):
         return
-    for stage in ("rail", "contact", "greens"):
-        arg = ["--rail", "bv50"] if stage == "rail" else ["--case", case]
-        ok = subprocess.run([sys.executable, "-c", f"from pipeline.artifacts import load_npz; "
-                             f"from pipeline.rail_stage import load_rail_params; from pipeline.paths import rail_dir; "
-                             f"load_npz(rail_dir('bv50') / 'rail.npz', 'rail', load_rail_params('bv50')[0])"],
-                            cwd=ROOT, capture_output=True).returncode == 0 if stage == "rail" else False
-        if not ok:
-            subprocess.run([sys.executable, "-m", "pipeline", stage, *arg, "-q"], cwd=ROOT, check=True)
+    if not _ok("from pipeline.artifacts import load_npz; from pipeline.rail_stage import load_rail_params; "
+               "from pipeline.paths import rail_dir; "
+               "load_npz(rail_dir('bv50') / 'rail.npz', 'rail', load_rail_params('bv50')[0])"):
+        _stage("rail", "--rail", "bv50")
+    _stage("contact", "--case", case)
+    _stage("greens", "--case", case)
 
 
 @pytest.fixture(scope="session")
