@@ -89,7 +89,7 @@ $(C)/simulate.npz: $(CFILE) $(C)/contact.npz $(C)/greens.npz $(SIM_SRC) | $(STAM
 $(C)/radiate.npz: $(CFILE) $(W)/modes.npz $(C)/simulate.npz $(RADIATE_SRC) | $(STAMP)
 	$(PY) -m pipeline radiate --case $(CASE)
 
-$(BUILD)/report/$(CASE)/report.md: $(CFILE) $(W)/modes.npz $(W)/shapes/gallery.png $(R)/rail.npz $(C)/contact.npz $(C)/greens.npz $(C)/simulate.npz $(C)/radiate.npz pipeline/report.py | $(STAMP)
+$(BUILD)/report/$(CASE)/report.md: $(CFILE) $(W)/modes.npz $(W)/shapes/gallery.png $(R)/rail.npz $(C)/contact.npz $(C)/greens.npz $(C)/simulate.npz $(C)/radiate.npz pipeline/report.py pipeline/study_report.py $(wildcard $(BUILD)/studies/*/summary.md) | $(STAMP)
 	$(PY) -m pipeline report --case $(CASE)
 
 mesh: $(W)/mesh.json ## Gmsh cross-section of WHEEL -> build/wheels/WHEEL/section.msh
