@@ -219,6 +219,7 @@ def default_section(cache: dict) -> str:
     dL = abs(ma["L_F2"] - mb["L_F2"])
     df = abs(ma["f_dominant"] / mb["f_dominant"] - 1)
     sa, sb, sc = (runs[("static", dt)][1] for dt in (DT, DT / 2, DT / 4))
+    sl = np.hypot(*ra.slip_final.T)
     dLs, dfs = abs(sa["L_F2"] - sb["L_F2"]), abs(sa["f_dominant"] / sb["f_dominant"] - 1)
 
     def label(f):              # the (n,0,a) mode whose eigenfrequency or a harmonic is nearest f
@@ -303,9 +304,11 @@ converges by itself: (3,0,a) (steady start) {ma['L_F2']:.2f} -> {mb['L_F2']:.2f}
 runs {sa['L_F2']:.2f} -> {sb['L_F2']:.2f} -> {sc['L_F2']:.2f} dB at 36 / 18 / 9 us (dL = {dLs:.2f} dB, df/f =
 {100 * dfs:.3f} % for the halving). Which mode a real wheel squeals at when two are nearly equally unstable is
 equally a matter of the disturbance history; the studies report the mode found from the standard start. The amplitude is set by
-the friction curve: the lateral vibration velocity at the contact reaches the creep velocity |gamma_y| v =
-{abs(GAMMA_Y) * V:.3f} m/s, the contact dips into the rising branch of mu_RF once per period (F2 drops below
-mu F3), whose positive slope is a damper that balances the coupling's energy input.
+the friction curve: the lateral vibration velocity at the contact becomes comparable with the creep velocity
+|gamma_y| v = {abs(GAMMA_Y) * V:.3f} m/s (slip {sl.min():.3f} .. {sl.max():.3f} m/s over the final stretch), the
+contact dips into the rising branch of mu_RF once per period ({100 * np.mean(ra.state_final == 1):.0f} % of the
+steps below full slip, F2/F3 down to {(ra.F_final[:, 1] / ra.F_final[:, 2]).min():.3f}), whose positive slope is a
+damper that balances the coupling's energy input.
 
 **Why it squeals -- linear growth rates.** In full slip (s = 0.19 m/s, on the plateau of mu_RF) F2 = mu F3
 whatever the lateral motion, so the small-amplitude feedback is the geometric coupling: near a lightly damped
