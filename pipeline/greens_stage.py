@@ -3,12 +3,23 @@ rail waves into the causal kernels the time loop uses, for one case.
 
 * Wheel: receptances at the case's tread point by modal superposition with
   the damping rule [4.11]; Kropp's Green's function on the automatic grid
-  (checked to have decayed); the exact fast form = recursive modal filters
-  (f_r, modal mass, zeta, the shapes at the contact point).
+  (decayed by 120 dB at N_t/2 dt, so that the truncation error stays below
+  0.1 % of |G| even at antiresonances) with the band-limited correction of its
+  first 16 samples (solvers/green.py): its DFT reproduces the receptance
+  pointwise to 0.1 % up to 6.5 kHz.  The time loop does not use this kernel
+  but its exact fast form, the recursive modal filters (f_r, modal mass, zeta,
+  the shapes at the contact point): the correction changes nothing there.
 * Rail: the moving Green's function g_mov[k] = g^R(v k dt, k dt) at the case's
   rail-head point, from the waveguide wave table on Kropp's grid.  The rail
-  model is valid to 6.5 kHz: the receptance is taken as zero above (it is
-  below -190 dB re 1 m/N there).
+  model is valid to 6.5 kHz; above, the receptance is rolled off to zero by
+  9 kHz with a smooth (C-infinity) taper.  A hard cut at 6.5 kHz (the
+  former choice) is a jump of Re G of a few 1e-10 m/N whose Hilbert transform puts
+  a logarithmic Im error at 6.5 kHz: Im of the kernel's spectrum drops to ~0
+  there and is slightly non-passive (negative damping) between 6.49 and
+  6.51 kHz.  No band-limited correction for the rail: its receptance has
+  hysteretic (constant loss factor) damping, Im G(0+) != 0, i.e. it is not the
+  transform of a causal response, and Kropp's kernel keeps Re G and the Im
+  that causality implies (docs/validation/50_greens.md).
 
 Artifact: build/cases/<case>/greens.npz and greens_wheel.png, greens_rail.png.
 The cache key is the resolved configuration (wheel, rail, case settings)
@@ -26,6 +37,11 @@ from . import artifacts, paths
 log = logging.getLogger("pipeline.greens")
 
 RAIL_F_MAX = 6500.0  # upper limit of the rail model (Hz)
+RAIL_F_TAPER = 9000.0  # the rail receptance is rolled off smoothly from RAIL_F_MAX to zero here (Hz)
+WHEEL_BAND_LIMIT = 6500.0  # the wheel kernel's DFT matches the receptance up to here (band-limited correction)
+WHEEL_DECAY_DB = 120.0  # decay of the wheel kernel by N_t/2 dt (choose_grid)
+KROPP_TAPS = 16  # samples refitted by the band-limited correction
+KROPP_FIT_TOL = 1e-3  # its pointwise tolerance relative to |G|
 RAIL_NT = 8192  # Kropp grid of the rail: df = 1/(N_t dt) = 3.4 Hz at 36 us
 RAIL_LAGS = 4096  # moving-kernel length (0.147 s, 2 m at 50 km/h); its decay is checked
 
@@ -45,7 +61,9 @@ def greens_inputs(case: str):
     _, rprov = artifacts.load_npz(paths.rail_dir(c["rail"]) / "rail.npz", "rail", pr, make_target=f"rail RAIL={c['rail']}")
     yw, yr = NOMINAL_POSITIONS[round(c["contact"]["dy_wr"], 3)]
     cfg = {"case": {k: c[k] for k in ("contact", "kinematics", "time")}, "wheel_modes": mprov["config_hash"],
-           "rail": rprov["config_hash"], "rail_nt": RAIL_NT, "rail_lags": RAIL_LAGS, "rail_f_max": RAIL_F_MAX}
+           "rail": rprov["config_hash"], "rail_nt": RAIL_NT, "rail_lags": RAIL_LAGS, "rail_f_max": RAIL_F_MAX,
+           "rail_f_taper": RAIL_F_TAPER, "wheel_band_limit": WHEEL_BAND_LIMIT, "wheel_decay_db": WHEEL_DECAY_DB,
+           "kropp_taps": KROPP_TAPS, "kropp_fit_tol": KROPP_FIT_TOL}
     return c, pw, pr, modes, (yw, yr), cfg
 
 
@@ -61,14 +79,20 @@ def wheel_greens(pw: dict, modes: dict, y_w: float, dt: float) -> dict:
     phi = contact_shape(modes["shapes"], where)
     zeta = modal_damping(modes["n"], modes["m"], modes["cls"], modes["kind"], modes["zeta_suspension"])
     f_r, mass = modes["f_hz"], modes["modal_mass"]
-    n_t = choose_grid(f_r, zeta, dt)
-    g = green_from_receptance(lambda f: wheel_receptance(f, f_r, mass, modes["n"], phi, zeta), dt, n_t)
+    n_t = choose_grid(f_r, zeta, dt, decay_db=WHEEL_DECAY_DB)
+    g, fit = green_from_receptance(lambda f: wheel_receptance(f, f_r, mass, modes["n"], phi, zeta), dt, n_t,
+                                   band_limit=WHEEL_BAND_LIMIT, taps=KROPP_TAPS, fit_tol=KROPP_FIT_TOL, info=True)
     check = decayed(g)
     if not check.ok:
         raise RuntimeError(f"wheel Green's function has not decayed by N_t/2 dt ({check.level_db:.0f} dB)")
+    if fit.fit_error.max() > 2 * KROPP_FIT_TOL:
+        log.warning("wheel kernel: the band-limited correction reaches only %.1e relative to |G| (asked %.0e)",
+                    fit.fit_error.max(), KROPP_FIT_TOL)
     return {"wheel_f": f_r, "wheel_mass": mass, "wheel_zeta": zeta, "wheel_phi": phi, "wheel_n": modes["n"],
             "wheel_nt": np.int64(n_t), "wheel_decay_db": np.float64(check.level_db),
-            "wheel_kernel": g[: 1 << 15], "wheel_point_rz": np.array([where.r, where.Z])}
+            "wheel_kernel": g[: 1 << 15], "wheel_point_rz": np.array([where.r, where.Z]),
+            "wheel_band_limit": np.float64(fit.band_limit), "wheel_fit_error": fit.fit_error,
+            "wheel_correction": fit.correction}
 
 
 def rail_greens(pr: dict, y_r: float, v: float, dt: float) -> dict:
@@ -78,13 +102,14 @@ def rail_greens(pr: dict, y_r: float, v: float, dt: float) -> dict:
     msh = paths.rail_dir(pr["name"]) / "section.msh"
     model = build_rail_model(pr, str(msh), contact_y=[y_r], with_centre=False)
     f = frequency_grid(dt, RAIL_NT)
-    inside = f <= RAIL_F_MAX
+    inside = f < RAIL_F_TAPER
     fin = np.maximum(f[inside], 1.0)  # the static limit: the 1 Hz response
     T = wave_table(model, fin, points=[y_r])
+    w = rail_taper(f[inside])
 
     def transfer(x, ff):
         G = np.zeros((len(x), len(ff), 2, 2), complex)
-        G[:, inside] = evaluate_table(T, x)[0]
+        G[:, inside] = evaluate_table(T, x)[0] * w[None, :, None, None]
         return G
 
     g = moving_green(transfer, v, dt, RAIL_LAGS, RAIL_NT)
@@ -94,7 +119,22 @@ def rail_greens(pr: dict, y_r: float, v: float, dt: float) -> dict:
         raise RuntimeError(f"rail Green's function has not decayed by N_t/2 dt ({check.level_db:.0f} dB)")
     tail = np.abs(g[-RAIL_LAGS // 8:]).max() / np.abs(g).max()
     return {"rail_kernel": g, "rail_fixed_kernel": g0[:RAIL_LAGS], "rail_decay_db": np.float64(check.level_db),
-            "rail_tail_ratio": np.float64(tail), "rail_nt": np.int64(RAIL_NT)}
+            "rail_tail_ratio": np.float64(tail), "rail_nt": np.int64(RAIL_NT),
+            "rail_point_receptance": evaluate_table(T, np.zeros(1))[0, 0]}  # G(0, f_k) untapered, f_k < RAIL_F_TAPER
+
+
+def rail_taper(f) -> np.ndarray:
+    """1 up to RAIL_F_MAX, 0 from RAIL_F_TAPER, between them the C-infinity step
+    1 - e(u) / (e(u) + e(1 - u)), e(u) = exp(-1/u), u = (f - RAIL_F_MAX)/(RAIL_F_TAPER - RAIL_F_MAX):
+    all derivatives continuous, so the Hilbert transform of the tapered Re G (the
+    Im of Kropp's kernel) is smooth at RAIL_F_MAX (a hard cut puts a log singularity there)."""
+    u = np.clip((np.asarray(f, float) - RAIL_F_MAX) / (RAIL_F_TAPER - RAIL_F_MAX), 0.0, 1.0)
+    out = np.where(u <= 0.0, 1.0, 0.0)
+    mid = (u > 0.0) & (u < 1.0)
+    a = np.exp(-1.0 / u[mid])
+    b = np.exp(-1.0 / (1.0 - u[mid]))
+    out[mid] = b / (a + b)
+    return out
 
 
 def run_greens(case: str) -> dict:
@@ -109,9 +149,10 @@ def run_greens(case: str) -> dict:
     out = paths.case_dir(case)
     plot_kernels(arrays, out / "greens.png", case)
     artifacts.save_npz(out / "greens.npz", "greens", cfg, **arrays)
-    log.info("greens %s: wheel %d modes, Kropp N_t = %d (decayed %.0f dB) in %.1f s; rail moving kernel %d lags "
-             "(tail %.1e of peak) in %.1f s -> %s", case, len(arrays["wheel_f"]), arrays["wheel_nt"],
-             arrays["wheel_decay_db"], t1 - t0, RAIL_LAGS, arrays["rail_tail_ratio"], t2 - t1, out / "greens.npz")
+    log.info("greens %s: wheel %d modes, Kropp N_t = %d (decayed %.0f dB, DFT = G to %.1e up to %.1f kHz) in %.1f s; "
+             "rail moving kernel %d lags (tail %.1e of peak) in %.1f s -> %s", case, len(arrays["wheel_f"]),
+             arrays["wheel_nt"], arrays["wheel_decay_db"], arrays["wheel_fit_error"].max(),
+             arrays["wheel_band_limit"] / 1e3, t1 - t0, RAIL_LAGS, arrays["rail_tail_ratio"], t2 - t1, out / "greens.npz")
     return arrays
 
 
@@ -127,7 +168,8 @@ def plot_kernels(a: dict, path, case: str) -> None:
     for (i, j, lab) in ((0, 0, "g22"), (1, 1, "g33"), (0, 1, "g23")):
         axs[0].plot(1e3 * tw, a["wheel_kernel"][:, i, j], lw=0.6, label=lab)
         axs[1].plot(1e3 * tr, a["rail_kernel"][:, i, j], lw=0.8, label=lab)
-    axs[0].set_title(f"{case}: wheel Green's function (Kropp), first {1e3 * tw[-1]:.0f} ms")
+    axs[0].set_title(f"{case}: wheel Green's function (Kropp, band-limited to {a['wheel_band_limit'] / 1e3:.1f} kHz), "
+                     f"first {1e3 * tw[-1]:.0f} ms")
     axs[1].set_title(f"rail moving Green's function, v = {3.6 * a['v']:.0f} km/h")
     for ax in axs:
         ax.set_xlabel("time (ms)")

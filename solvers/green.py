@@ -47,6 +47,43 @@ it is an error of the first samples, 2 f0 dt / pi of the peak at k = 0 and
 kernel is slightly non-passive off-resonance above ~2.6 kHz).  The sampled
 modal kernel of the filters below has a passive Im instead and a constant real
 offset -C dt^2/12, C = sum phi phi^T / m_r (docs/validation/50_greens.md).
+A second, smaller Im error is the truncation at N_t/2: 2 sum_{n > N_t/2}
+g_c(n dt) sin(2 pi f_k n dt), alternating in sign from one grid point to the
+next (it is what the folded tail leaves); it falls with the decay reached at
+N_t/2 dt (``choose_grid(.., decay_db)``).
+
+Band-limited correction (``band_limit``, SPEC 3.3)
+---------------------------------------------------
+Kropp's Im error is harmless against the level of the receptance but not
+pointwise at deep antiresonances (|G22| ~ 7e-13 m/N between the sparse C20
+peaks: tens to hundreds of % there).  Only the band up to ``band_limit`` (the
+6.5 kHz of the models) has to be right; the spectrum between band_limit and
+the Nyquist frequency 1/(2 dt) is free.  The error lives in the first
+samples (above), so ``green_from_receptance(.., band_limit=f_b)`` refits the
+first ``taps`` samples g[0..taps-1] (g[0] included): a correction h with
+
+    sum_{k < taps} h[k] exp(-2 pi i f k dt) = G(f) - DFT(g)(f),  0 < f <= f_b,
+
+by weighted least squares relative to |G| (weights 1/min|G| over each fit
+segment, so antiresonances count as much as peaks), on ~2000 frequencies
+(each the mean of two neighbouring grid points, which averages the
+alternating truncation error out), Tikhonov-regularised to the smallest
+correction that reaches ``fit_tol`` (discrepancy principle).  The error
+against f is smooth (a trigonometric polynomial of degree ~ taps fits it to
+1e-4 relative over 47 % of the circle), the band above f_b absorbs the rest.
+Nothing beyond lag taps - 1 changes (the SDOF and modal-kernel comparisons
+beyond 20 samples are untouched); Re DFT(g) is then exact only to the fit
+tolerance instead of to rounding.  The corrected kernel is real, causal and
+decays as before, and passive in the band; the band above f_b pays for it:
+there its spectrum departs from G by a few |G| and is non-passive in places
+(C20: -Im DFT(g) down to -7e-11 m/N, plain Kropp -6e-12), so a corrected
+kernel convolved in a time loop could feed spurious growth above f_b.  The
+greens stage corrects the wheel kernel, which the time loop does not use
+(it uses the modal filters below); the rail kernel it convolves is plain
+Kropp.  The correction assumes a causal receptance: for one with hysteretic
+(constant loss factor) damping, Im G(0+) != 0 and no causal kernel reproduces
+it (the BV50 rail, see pipeline/greens_stage.py); the fit would chase the
+non-causal part and is not used there.
 
 Wheel: exact recursive modal filters
 ------------------------------------
@@ -74,8 +111,9 @@ mode on the modal force P_r = Phi_r2 F2 + Phi_r3 F3:
   with (p1 - p2)/(s1 - s2) = dt exp(-sigma dt) sinh(mu dt)/(mu dt).
 
 The kernel these filters reproduce is ``modal_kernel`` (the sampled modal
-impulse response), not Kropp's g: the two differ only by Kropp's band limit
-(first samples) and time aliasing (documented in 50_greens.md).
+impulse response), not Kropp's g (plain or band-limited): the two differ only
+in the first samples (Kropp's band limit, or the correction) and by time
+aliasing (documented in 50_greens.md).
 
 Rail
 ----
@@ -109,33 +147,128 @@ def frequency_grid(dt: float, n_t: int) -> np.ndarray:
     return np.arange(n_t // 2 + 1) / (n_t * dt)
 
 
-def green_from_receptance(G_of_f, dt: float, n_t: int, chunk: int = 1 << 16) -> np.ndarray:
+class BandFit(NamedTuple):
+    """What the band-limited correction did (``green_from_receptance(.., info=True)``)."""
+    band_limit: float       # Hz: top of the band where DFT(g) = G is fitted
+    taps: int               # g[0..taps-1] were corrected
+    correction: np.ndarray  # (taps, ...) m/N, added to Kropp's g[:taps]
+    fit_error: np.ndarray   # (...) max |DFT(g) - G| / min|G| over the fit segments, per component
+    n_fit: int              # number of fit frequencies
+
+
+def _kropp(S: np.ndarray, n_t: int) -> np.ndarray:
+    """g[0..N_t/2] = causal half of ifft(S) with g[0] halved ([4.5])."""
+    s = sfft.irfft(S, n=n_t, axis=0)  # = ifft of the even (real, symmetric) spectrum
+    g = s[: n_t // 2 + 1].copy()
+    g[0] *= 0.5
+    return g
+
+
+def _band_index(band_limit: float, dt: float, n_t: int) -> int:
+    """Last grid index k with f_k <= band_limit (checked against the Nyquist frequency)."""
+    if not 0.0 < band_limit < 0.5 / dt:
+        raise ValueError(f"band_limit = {band_limit} Hz must lie between 0 and the Nyquist frequency {0.5 / dt:.0f} Hz")
+    kb = int(math.floor(band_limit * n_t * dt + 1e-9))
+    if kb < 3:
+        raise ValueError(f"band_limit = {band_limit} Hz holds fewer than 3 grid points (df = {1 / (n_t * dt):.3g} Hz)")
+    return kb
+
+
+def _fit_first_taps(G_band: np.ndarray, g: np.ndarray, dt: float, n_t: int, taps: int, fit_tol: float,
+                    n_fit: int = 2000):
+    """The correction h of g[:taps] (module notes: band-limited correction).
+    G_band: the receptance on grid points 0..kb (kb + 1, ...); g: Kropp's kernel
+    (N_t/2 + 1, ...).  Returns h (taps, ...), the reached max weighted residual
+    per component (...), the number of fit frequencies."""
+    kb = G_band.shape[0] - 1
+    if not 1 <= taps <= g.shape[0]:
+        raise ValueError(f"taps = {taps} must lie in 1..N_t/2 + 1")
+    comp = G_band.shape[1:]
+    Gb = G_band.reshape(kb + 1, -1)
+    E = Gb - sfft.rfft(g, n=n_t, axis=0)[: kb + 1].reshape(kb + 1, -1)   # what is missing in band
+    # fit segments [e_i, e_i+1]: the pair (e_i, e_i + 1) is the fit point, min |G| over the segment its weight
+    edges = np.unique(np.linspace(1, kb, min(n_fit, kb // 2) + 1).round().astype(np.int64))
+    k0 = edges[:-1]
+    Gmin = np.minimum.reduceat(np.abs(Gb[: edges[-1] + 1]), edges, axis=0)[:-1]
+    Em = 0.5 * (E[k0] + E[k0 + 1])
+    lags = np.arange(taps)
+    ph = (2 * np.pi / n_t) * lags[None, :]
+    X = 0.5 * (np.exp(-1j * ph * k0[:, None]) + np.exp(-1j * ph * (k0[:, None] + 1)))  # DFT of the taps, same means
+    h = np.zeros((taps, Gb.shape[1]))
+    err = np.zeros(Gb.shape[1])
+    for c in range(Gb.shape[1]):
+        top = np.abs(Gb[:, c]).max()
+        if top == 0.0:
+            continue
+        W = 1.0 / np.maximum(Gmin[:, c], 1e-9 * top)
+        A = np.vstack([W[:, None] * X.real, W[:, None] * X.imag])
+        y = np.concatenate([W * Em[:, c].real, W * Em[:, c].imag])
+        U, sv, Vt = np.linalg.svd(A, full_matrices=False)
+        uy = U.T @ y
+
+        def solve(lam):
+            return Vt.T @ (sv * uy / (sv ** 2 + lam ** 2))
+
+        def resid(x):
+            return float(np.abs(W * (X @ x - Em[:, c])).max())
+
+        # discrepancy principle: the largest lambda (smallest correction) that reaches fit_tol
+        lo, hi = -12.0, 2.0
+        if resid(solve(10 ** lo * sv[0])) <= fit_tol:
+            for _ in range(40):
+                mid = 0.5 * (lo + hi)
+                if resid(solve(10 ** mid * sv[0])) <= fit_tol:
+                    lo = mid
+                else:
+                    hi = mid
+        h[:, c] = solve(10 ** lo * sv[0])
+        err[c] = resid(h[:, c])
+    return h.reshape((taps,) + comp), err.reshape(comp), len(k0)
+
+
+def green_from_receptance(G_of_f, dt: float, n_t: int, chunk: int = 1 << 16, band_limit: float | None = None,
+                          taps: int = 16, fit_tol: float = 1e-3, info: bool = False):
     """Kropp's method [4.3]-[4.5]: the discrete Green's function g[k], k = 0..N_t/2.
 
     ``G_of_f``: a callable f (nf,) -> complex receptance (nf, ...) in m/N, or the
     receptance already sampled on ``frequency_grid(dt, n_t)``.  N_t must be even.
     Returns g (N_t/2 + 1, ...) in m/N: g[0] = 0.5 ifft(S)[0], g[k] = ifft(S)[k]
     (= dt s(k dt) of [4.5], see the module notes), S = 2 Re G.  The callable is
-    evaluated in chunks of ``chunk`` frequencies (only 2 Re G is kept).
+    evaluated in chunks of ``chunk`` frequencies.
+
+    ``band_limit`` (Hz, default None = plain Kropp): refit g[:taps] so that the DFT
+    of g reproduces G pointwise up to band_limit, to ``fit_tol`` relative to |G|
+    (module notes: band-limited correction; for causal receptances only).
+    ``info``: also return a ``BandFit`` (None without band_limit).
     """
     n_t = int(n_t)
     if n_t < 2 or n_t % 2:
         raise ValueError(f"n_t must be even and >= 2, got {n_t}")
     f = frequency_grid(dt, n_t)
+    kb = _band_index(band_limit, dt, n_t) if band_limit is not None else -1
     if callable(G_of_f):
         first = np.asarray(G_of_f(f[:1]))
         S = np.empty((len(f),) + first.shape[1:])
+        G_band = np.empty((kb + 1,) + first.shape[1:], complex)
         for a in range(0, len(f), chunk):
-            S[a:a + chunk] = 2.0 * np.real(G_of_f(f[a:a + chunk]))
+            Gc = np.asarray(G_of_f(f[a:a + chunk]))
+            S[a:a + chunk] = 2.0 * np.real(Gc)
+            m = min(len(Gc), kb + 1 - a)
+            if m > 0:
+                G_band[a:a + m] = Gc[:m]
     else:
         G = np.asarray(G_of_f)
         if G.shape[0] != len(f):
             raise ValueError(f"sampled receptance has {G.shape[0]} frequencies, the grid N_t/2 + 1 = {len(f)}")
         S = 2.0 * np.real(G)
-    s = sfft.irfft(S, n=n_t, axis=0)  # = ifft of the even (real, symmetric) spectrum
-    g = s[: n_t // 2 + 1].copy()
-    g[0] *= 0.5
-    return g
+        G_band = G[: kb + 1]
+    g = _kropp(S, n_t)
+    fit = None
+    if band_limit is not None:
+        h, err, n_fit = _fit_first_taps(G_band, g, dt, n_t, int(taps), float(fit_tol))
+        g[:taps] += h
+        fit = BandFit(float(band_limit), int(taps), h, err, n_fit)
+    return (g, fit) if info else g
 
 
 def _slowest_decay(w, zeta):
@@ -452,7 +585,8 @@ def ring_step(rc, F2, F3):
 # Rail: moving Green's function
 # ----------------------------------------------------------------------------------------------
 
-def moving_green(transfer: Callable, v: float, dt: float, n_k: int, n_t: int, chunk: int = 16) -> np.ndarray:
+def moving_green(transfer: Callable, v: float, dt: float, n_k: int, n_t: int, chunk: int = 16,
+                 band_limit: float | None = None, taps: int = 16, fit_tol: float = 1e-3, info: bool = False):
     """Moving Green's function of a translation-invariant rail (SPEC 3.4):
     g_mov[k] = g^R(x_k = v k dt, k dt), k = 0..n_k-1, (n_k, 2, 2) in m/N.
 
@@ -468,6 +602,14 @@ def moving_green(transfer: Callable, v: float, dt: float, n_k: int, n_t: int, ch
     Cost: n_k evaluations of the transfer receptance on N_t/2 + 1 frequencies
     (``chunk`` distances per call).  n_k <= N_t/2 + 1; the fixed-point response
     must have decayed by N_t/2 dt (check with ``decayed`` on the x = 0 function).
+
+    ``band_limit``: the lags k < taps take the band-limited correction of the
+    fixed-x kernel of G^R(x_k, .) (``green_from_receptance``), so that each
+    g^R(x_k, .) reproduces its receptance up to band_limit; v = 0 then equals
+    ``green_from_receptance(G^R(0, .), band_limit=..)``.  For causal receptances
+    only (not the hysteretic BV50 model).  ``info``: also return a ``BandFit``
+    (correction = the values added at lags 0..taps-1, fit_error = the worst over
+    those lags; None without band_limit).
     """
     n_t, n_k = int(n_t), int(n_k)
     if n_t % 2 or n_t < 2:
@@ -476,11 +618,16 @@ def moving_green(transfer: Callable, v: float, dt: float, n_k: int, n_t: int, ch
         raise ValueError(f"n_k = {n_k} must lie in 1..N_t/2 + 1 = {n_t // 2 + 1}")
     f = frequency_grid(dt, n_t)
     nf = len(f)
+    kb = _band_index(band_limit, dt, n_t) if band_limit is not None else -1
+    taps = min(int(taps), n_k)
     wts = np.full(nf, 2.0)
     wts[0] = 1.0
     wts[-1] = 1.0
     m = np.arange(nf, dtype=np.int64)
     g = np.zeros((n_k, 2, 2))
+    corr = np.zeros((taps, 2, 2))
+    err = np.zeros((2, 2))
+    n_fit = 0
     for a in range(0, n_k, chunk):
         ks = np.arange(a, min(n_k, a + chunk), dtype=np.int64)
         x = v * ks * dt
@@ -489,5 +636,14 @@ def moving_green(transfer: Callable, v: float, dt: float, n_k: int, n_t: int, ch
             raise ValueError(f"transfer returned shape {G.shape}, expected {(len(ks), nf, 2, 2)}")
         C = np.cos((2 * np.pi / n_t) * ((ks[:, None] * m[None, :]) % n_t)) * (wts / n_t)
         g[ks] = np.einsum("km,kmij->kij", C, 2.0 * G.real)
+        if band_limit is not None:
+            for i, k in enumerate(ks[ks < taps]):    # lags with a correction: the whole kernel of G(x_k, .)
+                gx = _kropp(2.0 * G[i].real, n_t)
+                h, e, n_fit = _fit_first_taps(G[i, : kb + 1], gx, dt, n_t, taps, float(fit_tol))
+                corr[k] = h[k]
+                err = np.maximum(err, e)
     g[0] *= 0.5
-    return g
+    g[:taps] += corr if band_limit is not None else 0.0
+    if not info:
+        return g
+    return g, (BandFit(float(band_limit), taps, corr, err, n_fit) if band_limit is not None else None)
