@@ -12,8 +12,9 @@ the pipeline's greens stage):
 * ``bv50_kernel(dt, v)``: the rail's moving Green's function from the built BV50 rail
   (build/rails/bv50/rail.npz: transfer receptances G(x, f) on 200 distances x 1000 log-spaced
   frequencies 25 Hz - 6.5 kHz, interpolated bilinearly in x and f onto Kropp's grid; zero
-  above 6.5 kHz, held at the 25 Hz value below, as pipeline/greens_stage.py does with the
-  exact wave sum).
+  above 6.5 kHz, held at the 25 Hz value below -- a test kernel: pipeline/greens_stage.py
+  evaluates the exact wave sum up to 9 kHz and rolls it off smoothly above 6.5 kHz; the
+  interaction report compares the two).
 """
 from __future__ import annotations
 
