@@ -104,6 +104,10 @@ Worst deviation {100 * worst:.2f} % (criterion 1 %).
     assert worst < 0.01
 
 
+FLIP_NOTE = (" -- mixed modes, whose tyre moves about as much out of plane as in plane: the automatic class "
+             "(ring theory) tips with the mesh while the frequencies do not (discretisation error above)")
+
+
 def test_c20_against_reference_with_mesh_convergence(tmp_path):
     import matplotlib
 
@@ -112,10 +116,11 @@ def test_c20_against_reference_with_mesh_convergence(tmp_path):
 
     p, _ = load_wheel("c20")
     ref = reference_rows(REF)
-    levels = []
+    levels, models = [], {}
     for factor in (2.0, 1.0, 0.5):
         t0 = time.perf_counter()
         model = modes_for_parameters(_scaled(p, factor), tmp_path / f"f{factor}")
+        models[factor] = model
         dt = time.perf_counter() - t0
         mt = match_modes(ref, model["f_hz"], model["n"], model["m"], model["cls"])
         levels.append((factor, len(model["points"]), dt, mt, summary(mt)))
@@ -126,9 +131,14 @@ def test_c20_against_reference_with_mesh_convergence(tmp_path):
     for factor, nodes, dt, mt, s in levels:
         conv.append(f"| x {factor:g} | {nodes} | {dt:.1f} s | {s['found']}/{s['total']} | {100 * s['median_abs']:.2f} % | "
                     f"{100 * s['max_abs']:.2f} % | {100 * s['max_abs_n0a']:.2f} % |")
-    # discretisation error of the default mesh: its frequencies vs the finest
-    disc = [abs(a.f_model - b.f_model) / b.f_model for a, b in zip(default[3], fine)
-            if a.f_model is not None and b.f_model is not None]
+    # discretisation error of the default mesh: each of its flexible modes against the finest mesh's
+    # nearest mode of the same harmonic (independent of the labels, which may flip for mixed modes)
+    fm, dm = models[0.5], models[1.0]
+    disc = []
+    for f, n in zip(dm["f_hz"][dm["kind"] == "flexible"], dm["n"][dm["kind"] == "flexible"]):
+        g = fm["f_hz"][(fm["kind"] == "flexible") & (fm["n"] == n)]
+        disc.append(np.abs(g - f).min() / f)
+    flips = [f"({a.n},{a.m},{a.cls})" for a, b in zip(default[3], fine) if (a.f_model is None) != (b.f_model is None)]
     fig, ax = plt.subplots(figsize=(9, 4))
     mts = default[3]
     x = np.arange(len(mts))
@@ -179,8 +189,9 @@ Mesh convergence (all mesh sizes of the parameter file scaled):
 
 {chr(10).join(conv)}
 
-Discretisation error of the default mesh against the x 0.5 mesh: median {100 * np.median(disc):.3f} %,
-max {100 * max(disc):.3f} % -- far below the deviations from the reference, which are model (geometry)
-differences.
+Discretisation error of the default mesh against the x 0.5 mesh (each mode against the nearest of the same
+harmonic): median {100 * np.median(disc):.3f} %, max {100 * max(disc):.3f} % -- far below the deviations from the
+reference, which are model (geometry) differences. Labels found on one of the two meshes only:
+{", ".join(flips) or "none"}{FLIP_NOTE if flips else ""}.
 """)
     assert s["found"] == s["total"] and s["median_abs"] <= 0.05 and s["max_abs"] <= 0.10 and s["max_abs_n0a"] <= 0.03
