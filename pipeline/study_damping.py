@@ -106,11 +106,14 @@ def write_outputs(spec, src, out: Path, quick, ctx, mu, gamma_y, bis, result, ro
     save_figure(damping_figure(steps, rows, labels, title, level), out / "damping.png")
     lines = ["| step | full model L_F2 (dB) | f (Hz) | squealing mode | f_mode (Hz) | zeta before | critical zeta "
              "bracket | bisection in | runs | note |", "|---:|---:|---:|---|---:|---:|---|---|---:|---|"]
+    def g(x, fmt):
+        return format(x, fmt) if np.isfinite(x) else ""
+
     for d in steps:
         br = f"{d['zeta_lo']:.3g} .. {d['zeta_hi']:.3g}" if np.isfinite(d["zeta_hi"]) else ""
-        lines.append(f"| {d['step']} | {d['L_F2']:.1f} | {d['f_dominant']:.0f} | {d['label']} | "
-                     f"{d['f_mode']:.0f} | {d['zeta_nominal']:.3g} | {br} | {d['bisection_model']} | {d['runs']} | "
-                     f"{d['note']} |".replace("| nan |", "|  |"))
+        lines.append(f"| {d['step']} | {g(d['L_F2'], '.1f')} | {g(d['f_dominant'], '.0f')} | {d['label']} | "
+                     f"{g(d['f_mode'], '.0f')} | {g(d['zeta_nominal'], '.3g')} | {br} | {d['bisection_model']} | "
+                     f"{d['runs']} | {d['note']}{' (taken out: ' + d['excluded'] + ')' if d['excluded'] else ''} |")
     crit = [d for d in steps if np.isfinite(d["zeta_hi"])]
     walls = np.array([r["wall_s"] for r in rows], float)
     text = f"""# Study `{spec['name']}`{' (quick)' if quick else ''}: wheel modal damping (SPEC 7)

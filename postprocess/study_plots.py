@@ -43,8 +43,14 @@ def map_figure(gamma_y, mu, fields: dict, title: str, level: float = 10.0):
         ax.set_facecolor("0.85")
         ok = np.isfinite(z)
         if ok.any():
-            im = ax.pcolormesh(gx, my, np.ma.masked_invalid(z), cmap=cmap, shading="flat",
-                               vmin=np.nanmin(z), vmax=np.nanmax(z) if np.nanmax(z) > np.nanmin(z) else None)
+            lo, hi = np.nanmin(z), np.nanmax(z)
+            if name.startswith("f_") and lo > 0 and hi > 1.5 * lo:    # frequencies: log colour scale
+                from matplotlib.colors import LogNorm
+
+                kw = {"norm": LogNorm(lo, hi)}
+            else:
+                kw = {"vmin": lo, "vmax": hi if hi > lo else None}
+            im = ax.pcolormesh(gx, my, np.ma.masked_invalid(z), cmap=cmap, shading="flat", **kw)
             fig.colorbar(im, ax=ax, label=label)
         else:
             ax.text(0.5, 0.5, "no squealing case" if name != "L_F2" else "no data", ha="center", va="center",

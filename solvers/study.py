@@ -35,15 +35,20 @@ def squeals(L_F2: float, level: float = SQUEAL_LEVEL) -> bool:
     return bool(np.isfinite(L_F2) and L_F2 >= level)
 
 
-def nearest_mode(f: float, f_modes, candidates=None, rel_tol: float = 0.05) -> int | None:
+def nearest_mode(f: float, f_modes, candidates=None, rel_tol: float = 0.05, harmonics=(1,)) -> int | None:
     """Index of the candidate mode whose frequency is nearest to ``f`` (the dominant frequency of
-    a squeal), or None when none is within ``rel_tol`` (relative) of it."""
+    a squeal), or None when none is within ``rel_tol`` (relative) of it.  With harmonics=(1, 2, 3)
+    ``f`` may also be the h-th harmonic of the mode (a strongly nonlinear limit cycle can put the
+    largest F2 peak at 2 f_r); the lowest h with a match wins."""
     f_modes = np.asarray(f_modes, float)
     idx = np.arange(f_modes.size) if candidates is None else np.flatnonzero(candidates)
     if not np.isfinite(f) or idx.size == 0:
         return None
-    j = idx[np.argmin(np.abs(f_modes[idx] - f))]
-    return int(j) if abs(f_modes[j] - f) <= rel_tol * f_modes[j] else None
+    for h in harmonics:
+        j = idx[np.argmin(np.abs(h * f_modes[idx] - f))]
+        if abs(h * f_modes[j] - f) <= rel_tol * h * f_modes[j]:
+            return int(j)
+    return None
 
 
 def single_mode_damping(zeta, keep: int, flexible, zeta_kept: float = 1e-6, zeta_others: float = 1.0) -> np.ndarray:
@@ -142,12 +147,13 @@ def _zkey(z) -> str:
 
 
 def damping_procedure(zeta0, f_modes, flexible, *, level: float = SQUEAL_LEVEL, zeta_max: float = 0.1,
-                      rel_tol: float = 0.05, max_steps: int = 8, mode_match: float = 0.05
+                      rel_tol: float = 0.05, max_steps: int = 8, mode_match: float = 0.05, harmonics=(1, 2, 3)
                       ) -> Generator[list, list, DampingResult]:
     """The wheel modal damping study of SPEC 7 as a generator of request batches.
 
     Repeat: run the full wheel model; if it squeals (L_F2 >= level) at a flexible mode (the
-    dominant frequency within ``mode_match`` of the mode's), find that mode's squeal-critical
+    dominant frequency within ``mode_match`` of the mode's, or of its 2nd or 3rd harmonic:
+    ``harmonics``), find that mode's squeal-critical
     damping (the smallest damping at which the run no longer squeals at that mode) with a model
     of only that mode plus the suspension (rigid half-wheelset) modes, by geometric bisection
     between its present damping (must squeal) and ``zeta_max`` (must be quiet) until
@@ -183,9 +189,10 @@ def damping_procedure(zeta0, f_modes, flexible, *, level: float = SQUEAL_LEVEL, 
         if not squeals(r.L_F2, level):
             out.end = "quiet: the full model does not squeal"
             break
-        i = nearest_mode(r.f_dominant, f_modes, flex, mode_match)
+        i = nearest_mode(r.f_dominant, f_modes, flex, mode_match, harmonics)
         if i is None:
-            st.note = f"squeal at {r.f_dominant:.1f} Hz, not within {100 * mode_match:.0f} % of a wheel mode"
+            st.note = (f"squeal at {r.f_dominant:.1f} Hz, not within {100 * mode_match:.0f} % of a wheel mode "
+                       f"(or of harmonics {list(harmonics)} of one)")
             out.end = "squeal not at a wheel mode"
             break
         if step == max_steps:
@@ -193,6 +200,8 @@ def damping_procedure(zeta0, f_modes, flexible, *, level: float = SQUEAL_LEVEL, 
             out.end = f"stopped after {max_steps} steps, still squealing"
             break
         st.mode, st.zeta_nominal = i, float(zeta[i])
+        if abs(r.f_dominant - f_modes[i]) > mode_match * f_modes[i]:
+            st.note = f"the dominant F2 peak is the {round(r.f_dominant / f_modes[i])}. harmonic of the mode"
 
         excluded: set[int] = set()
 
@@ -216,7 +225,7 @@ def damping_procedure(zeta0, f_modes, flexible, *, level: float = SQUEAL_LEVEL, 
                 st.runs += 1
                 if not squeals(o.L_F2, level):
                     return False
-                j = nearest_mode(o.f_dominant, f_modes, flex, mode_match)
+                j = nearest_mode(o.f_dominant, f_modes, flex, mode_match, harmonics)
                 if j == i:
                     return True
                 if kind == "full" and j is not None and j not in excluded:
@@ -233,14 +242,16 @@ def damping_procedure(zeta0, f_modes, flexible, *, level: float = SQUEAL_LEVEL, 
         if kind == "reduced":
             a, b = yield [req("reduced", lo), req("reduced", hi)]
             st.runs += 2
-            a_sq = squeals(a.L_F2, level) and nearest_mode(a.f_dominant, f_modes, flex, mode_match) == i
-            b_sq = squeals(b.L_F2, level) and nearest_mode(b.f_dominant, f_modes, flex, mode_match) == i
+            a_sq = squeals(a.L_F2, level) and nearest_mode(a.f_dominant, f_modes, flex, mode_match, harmonics) == i
+            b_sq = squeals(b.L_F2, level) and nearest_mode(b.f_dominant, f_modes, flex, mode_match, harmonics) == i
             if not a_sq:
-                st.note = "does not squeal alone at its damping: bisection in the full model"
+                st.note = (st.note + "; " if st.note else "") + \
+                    "does not squeal alone at its damping: bisection in the full model"
                 kind = "full"
                 b_sq = yield from probe("full", hi)
         else:
-            st.note = "squeals again after its critical damping: bisection in the full model"
+            st.note = (st.note + "; " if st.note else "") + \
+                "squeals again after its critical damping: bisection in the full model"
             b_sq = yield from probe("full", hi)
         st.bisection_model = kind
         if b_sq:

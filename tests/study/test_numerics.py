@@ -30,6 +30,8 @@ def test_squeal_criterion_and_mode_of_a_squeal():
     assert nearest_mode(9.5, f) == 1 and nearest_mode(8.0, f) is None  # 6.8 Hz nearest, but 18 % off
     assert nearest_mode(800.0, f, flex, rel_tol=0.05) is None         # nothing within 5 %
     assert nearest_mode(float("nan"), f, flex) is None
+    assert nearest_mode(876.0, f, flex) is None and nearest_mode(876.0, f, flex, harmonics=(1, 2, 3)) == 4
+    assert nearest_mode(1160.0, f, flex, harmonics=(1, 2, 3)) == 5          # the fundamental wins
 
 
 def test_single_mode_damping_keeps_the_suspension():
