@@ -70,6 +70,7 @@ def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool 
         inputs = config_hash({"context": ctx.inputs, "simulation": sim, "duration": duration, "modes": mset,
                               "creepage": cr, "mu": mu, "gamma_y": gy, "radiation": bool(rad)})
         common = {"case": case, "mu": mu, "early_stop": sim["early_stop"], "final": min(sim["final"], duration),
+                  "window": sim["window"],
                   "level": sim["squeal_level"]}
         for model in MODELS:
             for i in modes:

@@ -62,7 +62,8 @@ def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool 
                           {"step": r.step, "model": r.model, "mode": r.mode, "modes": list(r.modes),
                            "zeta": list(r.zeta), "zeta_mode": r.zeta[r.mode] if r.mode >= 0 else float("nan"),
                            "mu": mu, "gamma_y": gamma_y, "duration": sim["duration"],
-                           "early_stop": sim["early_stop"], "final": sim["final"], "level": sim["squeal_level"]})
+                           "early_stop": sim["early_stop"], "final": sim["final"], "window": sim["window"],
+                           "level": sim["squeal_level"]})
                      for r in batch]
             todo = pending(tasks, table)
             stats["total"] += len(tasks)

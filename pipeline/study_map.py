@@ -53,7 +53,7 @@ def tasks_of(spec: dict, src: str, contexts: dict, quick: bool) -> list[Task]:
             for mu in mus:
                 tasks.append(Task(case_key(case, gy, mu), inputs, case,
                                   {"gamma_y": float(gy), "mu": float(mu), "duration": sim["duration"],
-                                   "early_stop": sim["early_stop"], "final": sim["final"],
+                                   "early_stop": sim["early_stop"], "final": sim["final"], "window": sim["window"],
                                    "level": sim["squeal_level"]}))
     return tasks
 

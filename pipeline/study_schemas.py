@@ -20,6 +20,8 @@ SIMULATION = {
     "duration": Field(float, unit="s", min=0.01, max=8.0, default=8.0, doc="at most this much rolling (SPEC 6)"),
     "early_stop": Field(bool, default=True, doc="stop at a limit cycle or after decay (solvers.interaction.StopRule)"),
     "final": Field(float, unit="s", min=0.01, max=2.0, default=0.5, doc="stretch the measures are taken over"),
+    "window": Field(float, unit="s", min=0.01, max=2.0, default=0.25,
+                    doc="window of the early-stop rule (solvers.interaction.StopRule; 0.25 s as the simulate stage)"),
     "squeal_level": Field(float, unit="dB", min=-100.0, max=200.0, default=10.0,
                           doc="squeal when L_F2 >= this; sound power only then (SPEC 6)"),
 }
@@ -75,7 +77,8 @@ CONTACT = COMMON | {
         "f_max": Field(float, unit="Hz", min=0.0, max=20000.0, default=6500.0),
         "zeta_kept": Field(float, min=0.0, max=1.0, default=1e-6, doc="damping of the mode kept (SPEC 7)"),
         "zeta_others": Field(float, min=0.0, max=10.0, default=1.0, doc="damping of the other flexible modes"),
-        "kick": Field(float, unit="N s", min=0.0, max=100.0, default=0.01, doc="lateral impulse at t = 0"),
+        "kick": Field(float, unit="N s", min=0.0, max=100.0, default=0.01,
+                      doc="lateral impulse at t = 0 (a larger one shortens the growth; the limit cycle does not depend on it)"),
     },
     "simulation": SIMULATION,
     "creepage": {

@@ -55,7 +55,7 @@ def _run(ctx, wheel, p, *, gamma_y=None, tangential=None, rail=True, kick=None):
     return simulate(wheel, ctx.rail_kernel if rail else None, cm, dt=ctx.dt, v=ctx.v,
                     gamma_y=p["gamma_y"] if gamma_y is None else gamma_y, gamma_x=ctx.gamma_x,
                     preload=ctx.preload, duration=p["duration"], tangential=tangential, normal=ctx.normal,
-                    stop=StopRule() if p.get("early_stop", True) else None, kick=kick,
+                    stop=StopRule(window=p.get("window", 0.25)) if p.get("early_stop", True) else None, kick=kick,
                     store_every=max(1, int(round(0.01 / ctx.dt))), final=p.get("final", 0.5))
 
 
