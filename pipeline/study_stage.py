@@ -14,6 +14,7 @@ wall time, workers).
 from __future__ import annotations
 
 import contextlib
+import fcntl
 import importlib
 import json
 import logging
@@ -97,10 +98,16 @@ def run_study(name: str, *, quick: bool = False, scheduler: str | None = None, w
     mod = importlib.import_module(f".study_{spec['kind']}", __package__)
     client = LazyClient(scheduler, workers)
     t0 = time.perf_counter()
-    try:
-        stats = mod.run(spec, src, out, quick=quick, client=client, progress=progress)
-    finally:
-        client.close()
+    with open(out / ".lock", "w") as lock:
+        try:                                         # one run per output folder at a time
+            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            raise artifacts.ArtifactError(out, "another run of this study is writing here; wait for it "
+                                               "(or stop it: a rerun resumes where it stopped)") from None
+        try:
+            stats = mod.run(spec, src, out, quick=quick, client=client, progress=progress)
+        finally:
+            client.close()
     record = {"time": time.strftime("%Y-%m-%dT%H:%M:%S"), "study": spec["name"], "quick": quick,
               "scheduler": scheduler or "local", "workers": workers or (os.cpu_count() if not scheduler else None),
               "wall_s": round(time.perf_counter() - t0, 3)} | stats

@@ -128,3 +128,17 @@ def test_unknown_study_lists_the_available(studies):
     studies("x", 'name = "x"\n')
     with pytest.raises(ConfigError, match=r"no such study; available: \['x'\]"):
         study_stage.run_study("nope", progress=False)
+
+
+def test_one_run_per_output_folder(studies):
+    import fcntl
+
+    from pipeline.artifacts import ArtifactError
+
+    out = studies("lock", 'name = "lock"\nkind = "damping"\ncases = ["default"]\n')
+    out.mkdir(parents=True)
+    with open(out / ".lock", "w") as held:
+        fcntl.flock(held, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        with pytest.raises(ArtifactError, match="another run of this study"):
+            study_stage.run_study("lock", workers=1, out=out, progress=False)
+    assert not (out / "table.csv").exists()
