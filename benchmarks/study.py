@@ -85,6 +85,7 @@ def run(quick: bool = False) -> str:
                 res[early, workers] = r = _run(tmp, early, workers, quick)
                 print(f"study bench: early_stop={early}, {workers} worker(s): {r['n']} cases in {r['wall']:.0f} s",
                       file=sys.stderr)
+    load = " / ".join(f"{x:.1f}" for x in os.getloadavg())
     rows = []
     for (early, workers), r in res.items():
         rows.append(f"| {'early stop (as the study runs)' if early else 'every case 8 s (no early stop)'} | {workers} | "
@@ -102,7 +103,7 @@ core, OMP_NUM_THREADS=1). The creepage/friction map of SPEC 7 at one contact pos
 model (C20 modes below 7 kHz, BV50 moving kernel of 4096 lags), at most 8 s of rolling each; measured from a
 fresh start: cluster start-up, loading the case's artifacts, all cases, the outputs (table, maps, summary).
 Per case: the worker's wall time (median / mean / max); rolling: simulated time summed over the cases.
-Machine: {machine()}; the cores were {'' if os.environ.get('BENCH_QUIET_MACHINE') else 'possibly '}shared with other work.
+Machine: {machine()}; load average {load} at the end of the run.
 
 | runs | workers | cases | wall time | of which the tasks | per case | rolling | worker time per s of rolling |
 |---|---:|---:|---:|---:|---:|---:|---:|
@@ -111,9 +112,9 @@ Machine: {machine()}; the cores were {'' if os.environ.get('BENCH_QUIET_MACHINE'
 Target: the full map of one position (up to 8 s of rolling per case) in under {TARGET / 60:.0f} minutes on 2 cores:
 **{'met' if full2['wall'] < TARGET else 'NOT met'}** even with every case rolling the full 8 s
 ({full2['wall']:.0f} s). Scaling from 1 to 2 workers: {sc[False]:.2f}x with 8 s cases, {sc[True]:.2f}x with early
-stop (there the fixed costs -- cluster start-up, loading the artifacts, numba loading its cache once per
-worker, the outputs -- weigh more). As the study runs (early stop) the runs ended: {ends}; {res[True, 2]['squeal']}
-of {n} cases squeal (L_F2 >= 10 dB) with the artifacts of this run.
+stop (fixed costs: cluster start-up, loading the artifacts, numba loading its cache once per worker, the outputs:
+{res[True, 2]['wall'] - res[True, 2]['tasks']:.0f} s). As the study runs (early stop) the runs ended: {ends};
+{res[True, 2]['squeal']} of {n} cases squeal (L_F2 >= 10 dB) with the artifacts of this run.
 """
 
 
