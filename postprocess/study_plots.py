@@ -51,7 +51,14 @@ def map_figure(gamma_y, mu, fields: dict, title: str, level: float = 10.0):
             else:
                 kw = {"vmin": lo, "vmax": hi if hi > lo else None}
             im = ax.pcolormesh(gx, my, np.ma.masked_invalid(z), cmap=cmap, shading="flat", **kw)
-            fig.colorbar(im, ax=ax, label=label)
+            cb = fig.colorbar(im, ax=ax, label=label)
+            if "norm" in kw:                                            # plain numbers on the log scale
+                from matplotlib.ticker import FuncFormatter
+
+                plain = FuncFormatter(lambda v, _: f"{v:g}")
+                cb.ax.yaxis.set_major_formatter(plain)
+                cb.ax.yaxis.set_minor_formatter(plain)
+                cb.ax.tick_params(which="minor", labelsize=7)
         else:
             ax.text(0.5, 0.5, "no squealing case" if name != "L_F2" else "no data", ha="center", va="center",
                     transform=ax.transAxes, color="0.3")
