@@ -2,11 +2,13 @@
 against the case's configuration like every stage does) and scattered to the Dask workers:
 the contact tables and friction curves, the wheel's modal data at the contact point with the
 mode labels, the rail's moving Green's function, the case settings and, when the radiate stage
-exists, the wheel's radiation model.  ``inputs`` hashes all of it plus the source of the code
-that computes a case, so a study's stored rows go stale when any of it changes.
+exists, the wheel's radiation model.  ``inputs`` hashes all of it plus the code that computes a
+case (its syntax tree: docstrings and comments do not count), so a study's stored rows go stale
+when any of it changes.
 """
 from __future__ import annotations
 
+import ast
 import hashlib
 from dataclasses import dataclass, field
 from typing import Any
@@ -22,12 +24,26 @@ CODE = ["solvers/interaction.py", "solvers/green.py", "solvers/study.py", "postp
         "postprocess/force_radiation.py", "pipeline/radiate_stage.py", "solvers/receptance.py"]
 
 
+def _code_text(path) -> bytes:
+    """The code of a Python file without its docstrings and comments (its AST), so that editing
+    documentation does not make a study's results stale; other files as they are."""
+    if path.suffix != ".py":
+        return path.read_bytes()
+    tree = ast.parse(path.read_text())
+    for node in ast.walk(tree):
+        body = getattr(node, "body", None)
+        if isinstance(body, list) and body and isinstance(body[0], ast.Expr) \
+                and isinstance(body[0].value, ast.Constant) and isinstance(body[0].value.value, str):
+            node.body = body[1:] or [ast.Pass()]
+    return ast.dump(tree).encode()
+
+
 def code_hash() -> str:
     h = hashlib.sha256()
     for pattern in CODE:
         for p in sorted(paths.ROOT.glob(pattern)):
             h.update(p.relative_to(paths.ROOT).as_posix().encode())
-            h.update(p.read_bytes())
+            h.update(_code_text(p))
     return h.hexdigest()[:16]
 
 

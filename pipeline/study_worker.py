@@ -3,9 +3,10 @@ scalars) for the study runner.  The context (pipeline/study_context.CaseContext)
 per worker process; what derives from it (the contact model of each mu) is cached per process,
 and numba is warmed once per process before the first case is timed.
 
-Every case simulates with solvers.interaction.simulate from the steady rolling state plus the
-default kick (SPEC 3.5), at most ``duration`` s, stopping early at a limit cycle or after decay
-unless ``early_stop`` is false; squeal measures over the final 0.5 s (SPEC 6); sound power
+Every case simulates with solvers.interaction.simulate from the steady rolling state plus a
+lateral kick (SPEC 3.5; the simulation's default 0.01 N s unless the study sets one), at most
+``duration`` s, stopping early at a limit cycle or after decay unless ``early_stop`` is false;
+squeal measures over the final stretch (``final``, 0.5 s as SPEC 6 by default); sound power
 (L_W, its dominant frequency) with the radiate stage's model for squealing cases only
 (L_F2 >= the squeal level, SPEC 6).
 """
@@ -48,12 +49,11 @@ def _wheel(ctx, zeta=None, modes=None) -> WheelModes:
     return WheelModes(w["f"][idx], w["mass"][idx], z[idx], w["phi"][idx])
 
 
-def _run(ctx, wheel, p, *, gamma_y=None, tangential=None, rail=True, kick=None):
+def _run(ctx, wheel, p, *, tangential=None, kick=None):
     cm = _contact(ctx, p["mu"])
     tangential = tangential or ctx.tangential
     _warm(ctx, tangential)
-    return simulate(wheel, ctx.rail_kernel if rail else None, cm, dt=ctx.dt, v=ctx.v,
-                    gamma_y=p["gamma_y"] if gamma_y is None else gamma_y, gamma_x=ctx.gamma_x,
+    return simulate(wheel, ctx.rail_kernel, cm, dt=ctx.dt, v=ctx.v, gamma_y=p["gamma_y"], gamma_x=ctx.gamma_x,
                     preload=ctx.preload, duration=p["duration"], tangential=tangential, normal=ctx.normal,
                     stop=StopRule(window=p.get("window", 0.25)) if p.get("early_stop", True) else None, kick=kick,
                     store_every=max(1, int(round(0.01 / ctx.dt))), final=p.get("final", 0.5))
