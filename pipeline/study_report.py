@@ -1,6 +1,7 @@
 """The studies' part of the report (pipeline/report.py): every study found in build/studies/
 (the full version of a study when it exists, else its --quick version), its summary.md with the
-headings moved one level down and its figures copied into the report's figures/ folder."""
+headings moved under the report's "Studies" and its figures copied into the report's figures/
+folder."""
 from __future__ import annotations
 
 import re
@@ -23,8 +24,8 @@ def study_dirs(root: Path | None = None) -> list[Path]:
 
 
 def embed(summary: str, name: str, figdir: Path, src: Path) -> str:
-    """The summary with headings one level down and its figures copied to figdir as
-    study_<name>_<file>."""
+    """The summary with headings two levels down (under the report's "Studies") and its figures
+    copied to figdir as study_<name>_<file>."""
     def figure(m):
         target = src / m.group(2)
         if target.is_file():
@@ -32,7 +33,7 @@ def embed(summary: str, name: str, figdir: Path, src: Path) -> str:
             return f"]({figdir.name}/study_{name}_{target.name})"
         return m.group(0)
 
-    text = re.sub(r"^(#+) ", lambda m: "#" + m.group(1) + " ", summary, flags=re.M)
+    text = re.sub(r"^(#+) ", lambda m: "##" + m.group(1) + " ", summary, flags=re.M)
     return re.sub(r"\]\((\./)?([^)/]+\.png)\)", figure, text)
 
 

@@ -1,5 +1,6 @@
 """pipeline/study_report.py: the report's studies part takes each study's summary (the full
-version over the --quick one), moves its headings one level down and copies its figures."""
+version over the --quick one), moves its headings under the report's "Studies" and copies its
+figures."""
 from pipeline.study_report import embed, study_dirs
 
 
@@ -15,6 +16,6 @@ def test_studies_are_embedded_with_their_figures(tmp_path):
     figs = tmp_path / "figures"
     figs.mkdir()
     text = embed((root / "map" / "summary.md").read_text(), "map", figs, root / "map")
-    assert text.startswith("## Study map\n\n### part")
+    assert text.startswith("### Study map\n\n#### part")
     assert "](figures/study_map_fig_map.png)" in text and (figs / "study_map_fig_map.png").read_bytes() == b"png"
     assert "](x.png)" in text                                                   # a missing figure stays as it was
