@@ -410,6 +410,27 @@ def _record_window(F2, F3, done, wbuf, jw, iw, nw, dt, win_stats, min_steps, nee
 
 
 @numba.njit(cache=True)
+def _advance(filt, rc, n, F2, F3, F_ref, kick, wbuf, jw, iw, nw, dt, win_stats, min_steps, need, rms_tol, f_tol,
+             decay_abs):
+    """End of step n, shared by both drivers: the structures' response to this step's force
+    deviations (kick/dt added at n = 0) -> xi = xi^R - xi^W at step n + 1 (wheel: recursive modal
+    filters, the wheel moving by minus their sum [4.13]; rail: moving kernel), then the stop rule's
+    window.  Returns (xi2, xi3, jw, iw, reason)."""
+    d2 = F2 - F_ref[1]
+    d3 = F3 - F_ref[2]
+    if n == 0:
+        d2 += kick[0]
+        d3 += kick[1]
+    w2, w3 = filter_step(filt, d2, d3)
+    r2, r3 = ring_step(rc, d2, d3)
+    reason = 0
+    if nw > 0:
+        jw, iw, reason = _record_window(F2, F3, n + 1, wbuf, jw, iw, nw, dt, win_stats, min_steps, need, rms_tol,
+                                        f_tol, decay_abs)
+    return r2 + w2, r3 + w3, jw, iw, reason
+
+
+@numba.njit(cache=True)
 def _run_point(filt, rc, n_steps, dt, v, gx, gy, xi3_static, F_ref, u_ref, kick, slip_sign,
                xi3_nodes, q_nodes, A1_nodes, A2_nodes, s_nodes, mu_nodes, slopes, eps,
                store_every, hist, fin, nw, wbuf, win_stats, need, rms_tol, f_tol, decay_abs, min_steps,
@@ -469,22 +490,12 @@ def _run_point(filt, rc, n_steps, dt, v, gx, gy, xi3_static, F_ref, u_ref, kick,
         row[6] = xi3
         row[7] = state
         _store(n, row, hist, fin, store_every)
-        d2 = F2 - F_ref[1]
-        d3 = F3 - F_ref[2]
-        if n == 0:
-            d2 += kick[0]
-            d3 += kick[1]
-        w2, w3 = filter_step(filt, d2, d3)      # sum g^W dF (the wheel moves by minus this)
-        r2, r3 = ring_step(rc, d2, d3)          # sum g^R_mov dF
         xi2_old = xi2
-        xi2 = r2 + w2                           # xi^R - xi^W at step n + 1
-        xi3 = r3 + w3
+        xi2, xi3, jw, iw, reason = _advance(filt, rc, n, F2, F3, F_ref, kick, wbuf, jw, iw, nw, dt, win_stats,
+                                            min_steps, need, rms_tol, f_tol, decay_abs)
         done = n + 1
-        if nw > 0:
-            jw, iw, reason = _record_window(F2, F3, done, wbuf, jw, iw, nw, dt, win_stats, min_steps, need,
-                                            rms_tol, f_tol, decay_abs)
-            if reason != 0:
-                break
+        if reason != 0:
+            break
     return done, reason
 
 
@@ -819,16 +830,10 @@ def _run_reference(filt, rc, n_steps, dt, v, gx, gy, xi3_static, F_ref, u_ref, k
             counters[3] += 1
         row[:] = (F1, F2, F3, s1, s2, xi2, xi3, state)
         _store(n, row, hist, fin, store_every)
-        d2 = F2 - F_ref[1] + (kick[0] if n == 0 else 0.0)
-        d3 = F3 - F_ref[2] + (kick[1] if n == 0 else 0.0)
-        w2, w3 = filter_step(filt, d2, d3)
-        r2, r3 = ring_step(rc, d2, d3)
         xi2_old = xi2
-        xi2, xi3 = r2 + w2, r3 + w3
+        xi2, xi3, jw, iw, reason = _advance(filt, rc, n, float(F2), float(F3), F_ref, kick, wbuf, jw, iw, nw, dt,
+                                            win_stats, min_steps, need, rms_tol, f_tol, decay_abs)
         done = n + 1
-        if nw > 0:
-            jw, iw, reason = _record_window(F2, F3, done, wbuf, jw, iw, nw, dt, win_stats, min_steps, need,
-                                            rms_tol, f_tol, decay_abs)
-            if reason != 0:
-                break
+        if reason != 0:
+            break
     return done, reason, F_ref
