@@ -47,7 +47,8 @@ def selected_modes(spec: dict, ctx, quick: bool) -> list[int]:
 def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool = True) -> dict:
     from solvers.study import single_mode_damping
 
-    from .study_context import load_context, radiation_api
+    from .radiate_stage import load_radiation_model
+    from .study_context import load_context
     from .study_worker import contact_case
 
     sim, mset, cr = spec["simulation"], spec["modes"], spec["creepage"]
@@ -61,11 +62,8 @@ def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool 
         modes = selected_modes(spec, ctx, quick)
         zetas = {i: single_mode_damping(ctx.wheel["zeta"], i, ctx.flexible, mset["zeta_kept"], mset["zeta_others"])
                  for i in modes}
-        api = radiation_api()
-        rad = {i: api[0](case, dict(enumerate(z.tolist()))) for i, z in zetas.items()} if api else {}
-        ctx = dataclasses.replace(ctx, extra={"radiation": rad},
-                                  radiation_note="" if api else "no radiation model (pipeline/radiate_stage.py "
-                                                                "not present)")
+        rad = {i: load_radiation_model(case, dict(enumerate(z.tolist()))) for i, z in zetas.items()}
+        ctx = dataclasses.replace(ctx, extra={"radiation": rad}, radiation_note="")
         contexts[case] = ctx
         inputs = config_hash({"context": ctx.inputs, "simulation": sim, "duration": duration, "modes": mset,
                               "creepage": cr, "mu": mu, "gamma_y": gy, "radiation": bool(rad)})

@@ -1,8 +1,8 @@
 """What a study's cases run with, loaded once on the client from a case's artifacts (checked
 against the case's configuration like every stage does) and scattered to the Dask workers:
 the contact tables and friction curves, the wheel's modal data at the contact point with the
-mode labels, the rail's moving Green's function, the case settings and, when the radiate stage
-exists, the wheel's radiation model.  ``inputs`` hashes all of it plus the code that computes a
+mode labels, the rail's moving Green's function, the case settings and the wheel's radiation
+model (radiate stage).  ``inputs`` hashes all of it plus the code that computes a
 case (its syntax tree: docstrings and comments do not count), so a study's stored rows go stale
 when any of it changes.
 """
@@ -64,7 +64,7 @@ class CaseContext:
     contact: dict
     wheel: dict            # f, mass, zeta, phi (modes, 2), n, m, cls, kind
     rail_kernel: np.ndarray
-    radiation: Any = None  # pipeline.radiate_stage.load_radiation_model(case), or None
+    radiation: Any = None  # pipeline.radiate_stage.load_radiation_model(case), or None (not requested)
     radiation_note: str = ""
     extra: dict = field(default_factory=dict)
 
@@ -75,15 +75,6 @@ class CaseContext:
     def label(self, i: int) -> str:
         w = self.wheel
         return f"({int(w['n'][i])},{int(w['m'][i])},{w['cls'][i]})"
-
-
-def radiation_api():
-    """(load_radiation_model, sound_power_of_forces) of the radiate stage, or None before it exists."""
-    try:
-        from .radiate_stage import load_radiation_model, sound_power_of_forces
-    except ImportError:
-        return None
-    return load_radiation_model, sound_power_of_forces
 
 
 def load_context(case: str, *, radiation: bool = True, zeta_overrides: dict | None = None) -> CaseContext:
@@ -103,12 +94,10 @@ def load_context(case: str, *, radiation: bool = True, zeta_overrides: dict | No
                                       f"{paths.wheel_dir(c['wheel']) / 'modes.npz'}; run `make greens CASE={case}`")
     wheel = {"f": gr["wheel_f"], "mass": gr["wheel_mass"], "zeta": gr["wheel_zeta"], "phi": gr["wheel_phi"],
              "n": modes["n"], "m": modes["m"], "cls": modes["cls"].astype(str), "kind": modes["kind"].astype(str)}
-    model, note = None, ""
-    api = radiation_api() if radiation else None
-    if api is not None:
-        model = api[0](case, zeta_overrides)
-    else:
-        note = "no radiation model (pipeline/radiate_stage.py not present)" if radiation else "not requested"
+    from .radiate_stage import load_radiation_model
+
+    model = load_radiation_model(case, zeta_overrides) if radiation else None
+    note = "" if radiation else "not requested"
     inputs = config_hash({"contact": cprov["config_hash"], "greens": gprov["config_hash"],
                          "code": code_hash(), "radiation": model is not None,
                          "zeta_overrides": {str(k): float(v) for k, v in (zeta_overrides or {}).items()}})
