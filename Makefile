@@ -30,10 +30,11 @@ RAIL_SRC     := geometry/rail.py geometry/mesher.py solvers/waveguide.py solvers
 CONTACT_SRC  := $(wildcard solvers/contact/*.py) pipeline/contact_stage.py geometry/wheel.py geometry/rail.py
 GREENS_SRC   := solvers/green.py solvers/receptance.py solvers/rail_response.py pipeline/greens_stage.py
 SIM_SRC      := solvers/interaction.py pipeline/simulate_stage.py postprocess/spectra.py
+STAB_SRC     := solvers/stability.py solvers/interaction.py solvers/green.py pipeline/stability_stage.py
 RADIATE_SRC  := postprocess/radiation.py postprocess/force_radiation.py postprocess/spectra.py solvers/receptance.py geometry/wheel.py pipeline/radiate_stage.py
 
 .DEFAULT_GOAL := all
-.PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate report study check clean distclean
+.PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate stability report study check clean distclean
 .DELETE_ON_ERROR:
 
 all: report ## run the default case as far as the stages exist (wheel, rail, contact, greens, simulate, radiate, report)
@@ -89,6 +90,9 @@ $(C)/simulate.npz: $(CFILE) $(C)/contact.npz $(C)/greens.npz $(SIM_SRC) | $(STAM
 $(C)/radiate.npz: $(CFILE) $(W)/modes.npz $(C)/simulate.npz $(RADIATE_SRC) | $(STAMP)
 	$(PY) -m pipeline radiate --case $(CASE)
 
+$(C)/stability.npz: $(CFILE) $(C)/contact.npz $(C)/greens.npz $(STAB_SRC) | $(STAMP)
+	$(PY) -m pipeline stability --case $(CASE)
+
 $(BUILD)/report/$(CASE)/report.md: $(CFILE) $(W)/modes.npz $(W)/shapes/gallery.png $(R)/rail.npz $(C)/contact.npz $(C)/greens.npz $(C)/simulate.npz $(C)/radiate.npz pipeline/report.py pipeline/study_report.py $(wildcard $(BUILD)/studies/*/summary.md) | $(STAMP)
 	$(PY) -m pipeline report --case $(CASE)
 
@@ -99,6 +103,7 @@ contact: $(C)/contact.npz ## contact of CASE: gap, NORM table, compliance, frict
 greens: $(C)/greens.npz ## Green's functions of CASE: wheel (Kropp + modal filters), moving rail kernel
 simulate: $(C)/simulate.npz ## time-domain interaction of CASE: force histories, L_F2, dominant frequency
 radiate: $(C)/radiate.npz ## sound power of CASE's wheel under the simulated forces: W(f), L_W, per harmonic, unit-force curves
+stability: $(C)/stability.npz ## frequency-domain stability screen of CASE: closed-loop poles, growth rates, mode labels
 report: $(BUILD)/report/$(CASE)/report.md ## one Markdown report of CASE (WHEEL, RAIL must be the case's)
 
 # --- studies (SPEC 7): the cases' artifacts first, then the study on Dask (resumes when interrupted)

@@ -19,6 +19,7 @@ STAGES = {
     "greens": "wheel Green's function (Kropp, modal filters) and moving rail Green's function -> greens.npz",
     "simulate": "time-domain wheel/rail interaction of the case (numba) -> build/cases/<case>/simulate.npz",
     "radiate": "sound power of the wheel under the simulated contact forces (Thompson-Jones) -> radiate.npz",
+    "stability": "frequency-domain stability screen of the case (linearised time loop) -> stability.npz, .csv, .png",
     "report": "gather the case's results (wheel, rail, contact, Green's functions, interaction) -> build/report/<case>/report.md",
     "check": "validate the configuration files only (no computation)",
     "study": "a parameter study on Dask (SPEC 7): --study map|damping|contact -> build/studies/<study>/",
@@ -35,6 +36,7 @@ RUNNERS = {
     "greens": ("greens_stage", "run_greens", "case"),
     "simulate": ("simulate_stage", "run_simulate", "case"),
     "radiate": ("radiate_stage", "run_radiate", "case"),
+    "stability": ("stability_stage", "run_stability", "case"),
     "report": ("report", "run_report", "case"),
 }
 

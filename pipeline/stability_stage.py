@@ -1,0 +1,99 @@
+"""Stability stage: the frequency-domain stability screen of a case (``solvers.stability``).
+
+Linearises the case's time loop about steady rolling (its friction, creepage, preload, contact
+tables and Green's functions) and lists the closed-loop poles near every lightly damped wheel
+mode and of the wheelset on the track (20-400 Hz): frequency, growth rate, mode label.
+
+Artifacts: build/cases/<case>/stability.npz (keys: ``f_hz``, ``sigma`` (1/s), ``mode`` (index
+into modes.npz, -1 for a track root), ``label``, ``f_open`` (open-loop frequency, NaN for track
+roots), ``kc``, ``mu0``, ``dmu``, ``A2``, ``wall_s``), stability.csv (the same table sorted by
+growth rate) and stability.png (growth rate against frequency, unstable poles marked).
+"""
+from __future__ import annotations
+
+import logging
+import time
+
+import numpy as np
+
+from . import artifacts, paths
+
+log = logging.getLogger("pipeline.stability")
+
+
+def case_linear_model(case: str, mu: float | None = None, gamma_y: float | None = None):
+    """(case dict, LinearModel, mode labels, modes' open-loop frequencies) of a case, optionally at
+    another friction coefficient or creepage than the case's."""
+    from solvers.interaction import WheelModes, contact_model
+    from solvers.stability import linearise
+
+    from .simulate_stage import simulate_config
+
+    c, ccfg, gcfg, _ = simulate_config(case)
+    out = paths.case_dir(case)
+    con, _ = artifacts.load_npz(out / "contact.npz", "contact", ccfg, make_target=f"contact CASE={case}")
+    gr, gprov = artifacts.load_npz(out / "greens.npz", "greens", gcfg, make_target=f"greens CASE={case}")
+    modes, _ = artifacts.load_npz(paths.wheel_dir(c["wheel"]) / "modes.npz", "wheel-modes")
+    labels = np.array([f"({n},{m},{k})" for n, m, k in zip(modes["n"], modes["m"], modes["cls"])])
+    wheel = WheelModes(gr["wheel_f"], gr["wheel_mass"], gr["wheel_zeta"], gr["wheel_phi"])
+    mu = c["friction"]["mu"] if mu is None else mu
+    gamma_y = c["kinematics"]["gamma_y"] if gamma_y is None else gamma_y
+    lm = linearise(wheel, gr["rail_kernel"], contact_model(con, mu), dt=c["time"]["dt"],
+                   v=c["kinematics"]["speed"], gamma_y=gamma_y, preload=c["loading"]["preload"])
+    return c, lm, labels, np.asarray(gr["wheel_f"], float)
+
+
+def run_stability(case: str) -> dict:
+    from solvers.stability import track_roots, wheel_roots
+
+    from .simulate_stage import simulate_config
+
+    t0 = time.perf_counter()
+    c, lm, labels, f_open = case_linear_model(case)
+    roots = sorted(wheel_roots(lm) + track_roots(lm), key=lambda r: -r.sigma)
+    wall = time.perf_counter() - t0
+    mode = np.array([r.mode for r in roots], np.int64)
+    arrays = {"f_hz": np.array([r.f_hz for r in roots]), "sigma": np.array([r.sigma for r in roots]),
+              "mode": mode, "label": np.array([labels[m] if m >= 0 else "track" for m in mode]),
+              "f_open": np.array([f_open[m] if m >= 0 else np.nan for m in mode]),
+              "kc": np.float64(lm.kc), "mu0": np.float64(lm.mu0), "dmu": np.float64(lm.dmu),
+              "A2": np.float64(lm.A2), "wall_s": np.float64(wall)}
+    out = paths.case_dir(case)
+    cfg = {"simulate": simulate_config(case)[-1]}
+    artifacts.save_csv(out / "stability.csv", ["f_hz", "sigma_per_s", "mode", "label", "f_open_hz"],
+                       [(f"{f:.3f}", f"{s:.4f}", m, lab, f"{fo:.3f}") for f, s, m, lab, fo in
+                        zip(arrays["f_hz"], arrays["sigma"], mode, arrays["label"], arrays["f_open"])])
+    plot_screen(arrays, out / "stability.png", case, c)
+    artifacts.save_npz(out / "stability.npz", "stability", cfg, **arrays)
+    top = roots[0] if roots else None
+    log.info("stability %s: %d poles in %.2f s; fastest growing %s at %.1f Hz, sigma = %+.2f 1/s -> %s", case,
+             len(roots), wall, arrays["label"][0] if top else "-", top.f_hz if top else np.nan,
+             top.sigma if top else np.nan, out / "stability.npz")
+    return arrays
+
+
+def plot_screen(a: dict, path, case: str, c: dict) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    f, s, lab = a["f_hz"], a["sigma"], a["label"]
+    un = s > 0
+    ax.semilogx(f[~un], s[~un], "o", color="0.6", ms=4, label="stable")
+    ax.semilogx(f[un], s[un], "o", color="C3", ms=6, label="unstable")
+    for fi, si, li in zip(f[un], s[un], lab[un]):
+        ax.annotate(li, (fi, si), textcoords="offset points", xytext=(4, 4), fontsize=8)
+    ax.axhline(0, color="k", lw=0.6)
+    ax.set_xlabel("frequency (Hz)")
+    ax.set_ylabel("growth rate sigma (1/s)")
+    ax.set_ylim(max(-30.0, float(s.min()) - 1) if len(s) else -30, max(5.0, 1.15 * float(s.max())) if len(s) else 5)
+    ax.set_title(f"{case}: dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm, mu = {c['friction']['mu']}, "
+                 f"gamma_y = {c['kinematics']['gamma_y']}")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3, which="both")
+    fig.tight_layout()
+    with artifacts.atomic_write(path) as tmp:
+        fig.savefig(tmp, dpi=100)
+    plt.close(fig)
