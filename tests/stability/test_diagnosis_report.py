@@ -73,7 +73,7 @@ def test_diagnosis_report():
     keys = ["LF", "(0,0,a)", "(1,0,a)", "(2,0,a)", "(3,0,a)", "(4,0,a)", "(5,0,a)"]
     head = _head(keys)
     head5 = _head(keys[:5])
-    base, variants, fastest = [], {"rail": [], "susp": [], "g0": []}, {}
+    base, variants, fastest = [], {"rail": [], "susp": [], "lf": []}, {}
     for case, dy in CASES.items():
         for mu in MUS:
             c, lm, labels, _ = case_linear_model(case, mu=mu, gamma_y=GAMMA)
