@@ -44,13 +44,13 @@ def case_linear_model(case: str, mu: float | None = None, gamma_y: float | None 
 
 
 def run_stability(case: str) -> dict:
-    from solvers.stability import track_roots, wheel_roots
+    from solvers.stability import screen
 
     from .simulate_stage import simulate_config
 
     t0 = time.perf_counter()
     c, lm, labels, f_open = case_linear_model(case)
-    roots = sorted(wheel_roots(lm) + track_roots(lm), key=lambda r: -r.sigma)
+    roots = screen(lm)
     wall = time.perf_counter() - t0
     mode = np.array([r.mode for r in roots], np.int64)
     arrays = {"f_hz": np.array([r.f_hz for r in roots]), "sigma": np.array([r.sigma for r in roots]),

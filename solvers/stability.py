@@ -25,10 +25,17 @@ So M(z) dF = 0 with
 and the closed-loop poles are the roots z = exp(s dt) of D(s) = det M.  In full
 slip D = 1 + k_c (Y33 + mu0 Y32): the single-mode estimate of the interaction
 validation (kappa_r = Phi3 (Phi3 + mu Phi2) < 0 destabilises) is its one-mode limit.
-Roots near each wheel mode are found by Newton's method on D times the mode's
-pole pair (a function regular at the open-loop pole), started at the open-loop
-pole; the low-frequency roots of the wheelset on the track (20-400 Hz) by a grid
-of starting points.  Growth rate sigma = Re s (1/s), frequency Im s / 2 pi.
+
+Roots.  Near each lightly damped wheel mode r: the secant method on D times mode r's
+pole pair (regular at the open-loop pole), started at the pole, with the rest of Y
+(the other modes and the rail) expanded to first order about the pole (``Basis``:
+computed once per structure, shared by every friction, creepage and contact
+stiffness), then polished on the exact D.  The low-frequency roots of the wheelset
+on the track (20-400 Hz): local minima of |D| on a grid of s (the rail's transform
+along a line of constant sigma is one FFT of g[k] exp(-sigma k dt)), refined on the
+exact D.  Below sigma ~ -30/s the finite kernel's transform amplifies its truncated
+tail, so strongly damped track roots are not sought.  Growth rate sigma = Re s (1/s),
+frequency Im s / 2 pi.
 """
 from __future__ import annotations
 
@@ -60,163 +67,182 @@ class Root(NamedTuple):
     mode: int                # index of the wheel mode it continues (-1: low-frequency track root)
 
 
-def wheel_receptance_z(model: LinearModel, z: complex) -> np.ndarray:
-    """Y^W(z) (2, 2): the z-transform of the modal filters' kernel (g[0] = 0)."""
-    filt = modal_filter(model.dt, model.f_r, model.modal_mass, model.zeta, model.phi)
-    return _wheel_z(filt, z)
+# ------------------------------------------------------------------------------ transforms
 
-
-def _wheel_z(filt, z: complex, skip: int = -1) -> np.ndarray:
-    kind, zp, p2, w_in, w_out = filt.kind, filt.z, filt.p2, filt.w_in, filt.w_out
-    # kind 0: y[k] = Im(zp^k) -> (zp/(z-zp) - conj(zp)/(z-conj zp)) / 2i; kind 1: (zp^k - p2^k) sums
-    h = np.empty(len(kind), complex)
-    k0 = kind == 0
-    a, b = zp[k0], np.conj(zp[k0])
-    h[k0] = (a / (z - a) - b / (z - b)) / 2j
-    # kind 1 (zeta >= 1, two real poles a, b): y[k] = (a^k - b^k)/(a - b), k >= 1 (modal_filter's
-    # two-state recursion); a = b (zeta = 1): y[k] = k a^(k-1), transform z/(z - a)^2
-    a, b = zp[~k0].real, p2[~k0].real
-    same = np.abs(a - b) <= 1e-12 * np.abs(a)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        h1 = np.where(same, z / (z - a) ** 2, (a / (z - a) - b / (z - b)) / np.where(same, 1.0, a - b))
-    h[~k0] = h1
-    if skip >= 0:
-        h = h.copy()
-        h[skip] = 0.0
-    return np.einsum("r,ri,rj->ij", h, w_out, w_in)
-
-
-def rail_receptance_z(kernel: np.ndarray, z: complex) -> np.ndarray:
-    """Y^R(z) = sum_{k>=1} g[k] z^-k (2, 2) of the moving kernel."""
-    k = np.arange(1, kernel.shape[0])
-    return np.einsum("k,kij->ij", z ** (-k.astype(float)), kernel[1:])
-
-
-def _det(model: LinearModel, Y: np.ndarray, z: complex) -> complex:
-    q = model.F3 * model.dmu * (1.0 - 1.0 / z) / model.dt
-    M = np.array([[1.0 + q * model.A2 + q * Y[0, 0], -model.mu0 + q * Y[0, 1]],
-                  [model.kc * Y[1, 0], 1.0 + model.kc * Y[1, 1]]])
-    return M[0, 0] * M[1, 1] - M[0, 1] * M[1, 0]
-
-
-def characteristic(model: LinearModel, s: complex, filt=None) -> complex:
-    """D(s) = det M(exp(s dt)) (module notes)."""
-    filt = filt if filt is not None else modal_filter(model.dt, model.f_r, model.modal_mass, model.zeta, model.phi)
-    z = np.exp(s * model.dt)
-    Y = _wheel_z(filt, z) + rail_receptance_z(model.rail_kernel, z)
-    return _det(model, Y, z)
-
-
-def _newton(fun, s0: complex, tol: float = 1e-10, max_iter: int = 60) -> complex | None:
-    """Secant iteration on a complex analytic function: a root (relative step below ``tol`` and
-    |fun| below 1e-6 of its value at the start) or None."""
-    s1 = s0 * (1 + 1e-6) + 1e-3
-    f0, f1 = fun(s0), fun(s1)
-    scale = max(abs(f0), abs(f1))
-    with np.errstate(all="ignore"):
-        return _secant(fun, s0, s1, f0, f1, scale, tol, max_iter)
-
-
-def _secant(fun, s0, s1, f0, f1, scale, tol, max_iter):
-    for _ in range(max_iter):
-        if f1 == f0:
-            break
-        s2 = s1 - f1 * (s1 - s0) / (f1 - f0)
-        if not np.isfinite(s2):
-            return None
-        s0, f0 = s1, f1
-        s1, f1 = s2, fun(s2)
-        if abs(s1 - s0) <= tol * max(abs(s1), 1.0):
-            return s1 if abs(f1) <= 1e-6 * scale else None
-    return None
-
-
-def wheel_roots(model: LinearModel, modes=None) -> list[Root]:
-    """The closed-loop pole continuing each lightly damped wheel mode (zeta < 0.5)."""
-    filt = modal_filter(model.dt, model.f_r, model.modal_mass, model.zeta, model.phi)
-    kern = model.rail_kernel
-    idx = range(len(model.f_r)) if modes is None else modes
-    out = []
-    for r in idx:
-        if model.zeta[r] >= 0.5:
-            continue
-        zr = filt.z[r]
-        # D (z - zr)(z - conj zr): regular at the open-loop pole pair of mode r
-        rest = lambda z, r=r: _wheel_z(filt, z, skip=r)                                   # noqa: E731
-
-        def fun(s, r=r, zr=zr):
-            z = np.exp(s * model.dt)
-            pp = (z - zr) * (z - np.conj(zr))
-            # mode r's term times its pole pair: (zr (z - conj zr) - conj zr (z - zr)) / 2i
-            hr = (zr * (z - np.conj(zr)) - np.conj(zr) * (z - zr)) / 2j
-            Yr = hr * np.outer(filt.w_out[r], filt.w_in[r])
-            Y = rest(z) + rail_receptance_z(kern, z)
-            q = model.F3 * model.dmu * (1.0 - 1.0 / z) / model.dt
-            Yt = pp * Y + Yr
-            M00 = pp * (1.0 + q * model.A2) + q * Yt[0, 0]
-            M01 = -model.mu0 * pp + q * Yt[0, 1]
-            M10 = model.kc * Yt[1, 0]
-            M11 = pp + model.kc * Yt[1, 1]
-            return (M00 * M11 - M01 * M10) / pp
-        s0 = np.log(zr) / model.dt
-        s = _newton(fun, complex(s0) + complex(1e-3, 1e-3))
-        if s is not None and abs(s.imag - s0.imag) < 0.2 * abs(s0.imag) + 2 * np.pi * 5:
-            out.append(Root(s.imag / (2 * np.pi), s.real, int(r)))
-    return out
-
-
-def _wheel_z_many(filt, z: np.ndarray) -> np.ndarray:
-    """Y^W at many points z (P,) -> (P, 2, 2)."""
+def _modal_terms(filt, z: np.ndarray) -> np.ndarray:
+    """Per-mode scalar transforms h_r(z) (P, M): kind 0 (zeta < 1) y[k] = Im(p^k) ->
+    (p/(z-p) - p*/(z-p*)) / 2i; kind 1 (two real poles a, b) y[k] = (a^k - b^k)/(a - b)
+    (modal_filter's two-state recursion), a = b (zeta = 1): y[k] = k a^(k-1) -> z/(z-a)^2."""
+    zz = np.asarray(z, complex).reshape(-1, 1)
     kind, zp, p2 = filt.kind, filt.z, filt.p2
-    zz = z[:, None]
+    H = np.empty((zz.shape[0], len(kind)), complex)
     k0 = kind == 0
     a, b = zp[None, k0], np.conj(zp[None, k0])
-    H = np.empty((len(z), len(kind)), complex)
     H[:, k0] = (a / (zz - a) - b / (zz - b)) / 2j
     if (~k0).any():
         a, b = zp[None, ~k0].real, p2[None, ~k0].real
         same = np.abs(a - b) <= 1e-12 * np.abs(a)
         with np.errstate(divide="ignore", invalid="ignore"):
             H[:, ~k0] = np.where(same, zz / (zz - a) ** 2, (a / (zz - a) - b / (zz - b)) / np.where(same, 1.0, a - b))
-    return np.einsum("pr,ri,rj->pij", H, filt.w_out, filt.w_in)
+    return H
 
 
-def track_roots(model: LinearModel, f_lo: float = 20.0, f_hi: float = 400.0, sigma_lo: float = -20.0,
-                sigma_hi: float = 400.0) -> list[Root]:
-    """Closed-loop poles of the wheelset on the track with f_lo <= f <= f_hi (Hz) and growth rate
-    sigma_lo <= sigma <= sigma_hi (1/s): local minima of |D| on a grid (FFT bins of ~1.7 Hz x
-    10/s; the rail's transform on a row of constant sigma is one FFT of g[k] exp(-sigma k dt))
-    refined by the secant method.  Below sigma ~ -30/s the finite moving kernel's transform
-    amplifies its truncated tail, so strongly damped roots are not sought."""
-    filt = modal_filter(model.dt, model.f_r, model.modal_mass, model.zeta, model.phi)
-    g = model.rail_kernel.copy()
-    g[0] = 0.0
-    n_fft = 1 << int(np.ceil(np.log2(max(len(g), 1.0 / (2.0 * model.dt)))))
-    fb = np.fft.fftfreq(n_fft, model.dt)
-    cols = np.flatnonzero((fb >= f_lo) & (fb <= f_hi))
-    fs = fb[cols]
-    sg = np.arange(sigma_lo, sigma_hi + 1e-9, 10.0)
-    k = np.arange(len(g))
-    S = sg[:, None] + 2j * np.pi * fs[None, :]
-    Z = np.exp(S * model.dt)
-    Yr = np.stack([np.fft.fft(g * np.exp(-s * k * model.dt)[:, None, None], n=n_fft, axis=0)[cols] for s in sg])
-    Y = Yr + _wheel_z_many(filt, Z.ravel()).reshape(*Z.shape, 2, 2)
-    q = model.F3 * model.dmu * (1.0 - 1.0 / Z) / model.dt
-    M00 = 1.0 + q * model.A2 + q * Y[..., 0, 0]
-    M01 = -model.mu0 + q * Y[..., 0, 1]
-    L = np.log(np.abs(M00 * (1.0 + model.kc * Y[..., 1, 1]) - M01 * model.kc * Y[..., 1, 0]))
-    fun = lambda s: characteristic(model, s, filt)                                         # noqa: E731
+def _wheel_z(filt, z, skip: int = -1) -> np.ndarray:
+    """Y^W at one point z (2, 2), optionally without mode ``skip``."""
+    h = _modal_terms(filt, z)[0]
+    if skip >= 0:
+        h[skip] = 0.0
+    return np.einsum("r,ri,rj->ij", h, filt.w_out, filt.w_in)
+
+
+def wheel_receptance_z(model: LinearModel, z: complex) -> np.ndarray:
+    """Y^W(z) (2, 2): the z-transform of the modal filters' kernel (g[0] = 0)."""
+    return _wheel_z(_filter(model), z)
+
+
+def rail_receptance_z(kernel: np.ndarray, z: complex) -> np.ndarray:
+    """Y^R(z) = sum_{k>=1} g[k] z^-k (2, 2) of the moving kernel."""
+    w = np.exp(-np.log(complex(z)) * np.arange(1, kernel.shape[0]))
+    return (w @ kernel[1:].reshape(-1, 4)).reshape(2, 2)
+
+
+def _filter(model: LinearModel):
+    return modal_filter(model.dt, model.f_r, model.modal_mass, model.zeta, model.phi)
+
+
+def _det(model, Y: np.ndarray, z, scale=1.0):
+    """det M for Y (..., 2, 2) at z (...) (module notes); with ``scale`` c and Y = c Y_true,
+    det(c M) = c^2 D."""
+    q = model.F3 * model.dmu * (1.0 - 1.0 / z) / model.dt
+    M00 = scale * (1.0 + q * model.A2) + q * Y[..., 0, 0]
+    M01 = -model.mu0 * scale + q * Y[..., 0, 1]
+    return M00 * (scale + model.kc * Y[..., 1, 1]) - M01 * model.kc * Y[..., 1, 0]
+
+
+def characteristic(model: LinearModel, s: complex, filt=None) -> complex:
+    """D(s) = det M(exp(s dt)) (module notes)."""
+    filt = filt if filt is not None else _filter(model)
+    z = np.exp(s * model.dt)
+    return _det(model, _wheel_z(filt, z) + rail_receptance_z(model.rail_kernel, z), z)
+
+
+# ------------------------------------------------------------------------------ root finding
+
+def _secant(fun, s0: complex, tol: float = 1e-10, max_iter: int = 60) -> complex | None:
+    """Secant iteration on a complex analytic function: a root (relative step below ``tol`` and
+    |fun| below 1e-6 of its value at the start) or None."""
+    s1 = s0 * (1 + 1e-6) + 1e-3
+    with np.errstate(all="ignore"):
+        f0, f1 = fun(s0), fun(s1)
+        scale = max(abs(f0), abs(f1))
+        for _ in range(max_iter):
+            if f1 == f0:
+                return None
+            s2 = s1 - f1 * (s1 - s0) / (f1 - f0)      # s2 = s1 - f1 (s1 - s0) / (f1 - f0)
+            if not np.isfinite(s2):
+                return None
+            s0, f0, s1, f1 = s1, f1, s2, fun(s2)
+            if abs(s1 - s0) <= tol * max(abs(s1), 1.0):
+                return s1 if abs(f1) <= 1e-6 * scale else None
+    return None
+
+
+class Basis:
+    """The structures' transforms, computed once and shared by every operating point (friction,
+    creepage, contact stiffness): per lightly damped mode r the rest of Y (other modes + rail)
+    and its s-derivative at mode r's open-loop pole; Y on the low-frequency grid."""
+
+    def __init__(self, model: LinearModel, f_lo: float = 20.0, f_hi: float = 400.0, sigma_lo: float = -20.0,
+                 sigma_hi: float = 400.0):
+        self.model, self.filt = model, _filter(model)
+        self.f_lo, self.f_hi, self.sigma_lo, self.sigma_hi = f_lo, f_hi, sigma_lo, sigma_hi
+        dt, g = model.dt, model.rail_kernel
+        self.modes = np.flatnonzero(np.asarray(model.zeta) < 0.5)
+        self.s0 = np.log(self.filt.z[self.modes]) / dt
+        k = np.arange(1, g.shape[0]) * dt
+        E = np.exp(-np.outer(self.s0, k))                          # z^-k at each pole
+        G = g[1:].reshape(len(k), 4)
+        self.rail0 = (E @ G).reshape(-1, 2, 2)
+        self.rail1 = (-(E * k) @ G).reshape(-1, 2, 2)              # d/ds sum g[k] exp(-s k dt)
+        h = _modal_terms(self.filt, np.exp(self.s0 * dt))
+        z0 = np.exp(self.s0 * dt)
+        dh = (_modal_terms(self.filt, np.exp((self.s0 + 1e-3) * dt)) - h) / 1e-3
+        ww = np.einsum("ri,rj->rij", self.filt.w_out, self.filt.w_in)
+        for a, r in enumerate(self.modes):                          # drop mode r from its own rest
+            h[a, r] = dh[a, r] = 0.0
+        self.rest0 = np.einsum("ar,rij->aij", h, ww) + self.rail0
+        self.rest1 = np.einsum("ar,rij->aij", dh, ww) + self.rail1
+        self.ww, self.z0 = ww, z0
+        self._grid()
+
+    def _grid(self):
+        m = self.model
+        g = m.rail_kernel.copy()
+        g[0] = 0.0
+        n_fft = 1 << int(np.ceil(np.log2(max(len(g), 1.0 / (2.0 * m.dt)))))
+        fb = np.fft.fftfreq(n_fft, m.dt)
+        cols = np.flatnonzero((fb >= self.f_lo) & (fb <= self.f_hi))
+        sg = np.arange(self.sigma_lo, self.sigma_hi + 1e-9, 10.0)
+        kk = np.arange(len(g))
+        self.S = sg[:, None] + 2j * np.pi * fb[cols][None, :]
+        self.Z = np.exp(self.S * m.dt)
+        Yr = np.stack([np.fft.fft(g * np.exp(-s * kk * m.dt)[:, None, None], n=n_fft, axis=0)[cols] for s in sg])
+        Yw = np.einsum("pr,rij->pij", _modal_terms(self.filt, self.Z.ravel()), self.ww).reshape(*self.Z.shape, 2, 2)
+        self.Ygrid = Yr + Yw
+
+
+def wheel_roots(model: LinearModel, basis: Basis | None = None, polish: bool = True) -> list[Root]:
+    """The closed-loop pole continuing each lightly damped wheel mode (zeta < 0.5)."""
+    b = basis if basis is not None else Basis(model)
+    out = []
+    for a, r in enumerate(b.modes):
+        zr, ww = b.filt.z[r], b.ww[r]
+
+        def fun(s, exact=False, a=a, r=r, zr=zr, ww=ww):
+            z = np.exp(s * model.dt)
+            pp = (z - zr) * (z - np.conj(zr))
+            hr = (zr * (z - np.conj(zr)) - np.conj(zr) * (z - zr)) / 2j      # mode r's term times pp
+            rest = (_wheel_z(b.filt, z, skip=r) + rail_receptance_z(model.rail_kernel, z) if exact
+                    else b.rest0[a] + b.rest1[a] * (s - b.s0[a]))
+            return _det(model, pp * rest + hr * ww, z, pp) / pp              # = pp D(s): regular at the pole
+        s = _secant(fun, complex(b.s0[a]) + complex(1e-3, 1e-3))
+        if s is not None and polish:
+            s = _secant(lambda x: fun(x, True), s)
+        if s is not None and abs(s.imag - b.s0[a].imag) < 0.2 * abs(b.s0[a].imag) + 2 * np.pi * 5:
+            out.append(Root(s.imag / (2 * np.pi), s.real, int(r)))
+    return out
+
+
+def track_roots(model: LinearModel, basis: Basis | None = None) -> list[Root]:
+    """Closed-loop poles of the wheelset on the track inside the basis' (f, sigma) window."""
+    b = basis if basis is not None else Basis(model)
+    L = np.log(np.abs(_det(model, b.Ygrid, b.Z)))
+    fun = lambda s: characteristic(model, s, b.filt)                                     # noqa: E731
     found = []
-    for i in range(len(sg)):
-        for j in range(1, len(fs) - 1):
+    for i in range(L.shape[0]):
+        for j in range(1, L.shape[1] - 1):
             if L[i, j] > L[max(i - 1, 0):i + 2, j - 1:j + 2].min():
                 continue
-            s = _newton(fun, complex(S[i, j]))
-            if s is None or not (f_lo <= s.imag / (2 * np.pi) <= f_hi and sigma_lo - 5 <= s.real <= sigma_hi):
-                continue
-            if all(abs(s - t) > 1e-4 * abs(s) for t in found):
+            s = _secant(fun, complex(b.S[i, j]))
+            if (s is not None and b.f_lo <= s.imag / (2 * np.pi) <= b.f_hi
+                    and b.sigma_lo - 5 <= s.real <= b.sigma_hi and all(abs(s - t) > 1e-4 * abs(s) for t in found)):
                 found.append(s)
     return [Root(s.imag / (2 * np.pi), s.real, -1) for s in sorted(found, key=lambda s: s.imag)]
+
+
+def screen(model: LinearModel, basis: Basis | None = None, polish: bool = True) -> list[Root]:
+    """All closed-loop poles the screen seeks, fastest growing first."""
+    b = basis if basis is not None else Basis(model)
+    return sorted(wheel_roots(model, b, polish) + track_roots(model, b), key=lambda r: -r.sigma)
+
+
+def operating_point(model: LinearModel, contact, *, v: float, gamma_y: float) -> LinearModel:
+    """``model`` at another friction curve / creepage: mu0, dmu from ``contact``'s curve at
+    |gamma_y| v (the structures, k_c and A2 kept)."""
+    from .contact.friction import mu_and_slope
+
+    mu0, dmu = mu_and_slope(abs(gamma_y) * v, contact.s_nodes, contact.mu_nodes, contact.slopes)
+    return model._replace(mu0=float(mu0), dmu=float(dmu))
 
 
 def linearise(wheel, rail_kernel: np.ndarray, contact, *, dt: float, v: float, gamma_y: float,
@@ -226,7 +252,6 @@ def linearise(wheel, rail_kernel: np.ndarray, contact, *, dt: float, v: float, g
     wheel: ``interaction.WheelModes``; rail_kernel: the moving Green's function (K, 2, 2);
     contact: ``interaction.ContactModel``; dt (s), v (m/s), gamma_y (< 0), preload F3 (N)."""
     from .contact.compliance import table_compliance
-    from .contact.friction import mu_and_slope
     from .contact.norm import table_force
     from .interaction import static_approach
 
@@ -236,9 +261,8 @@ def linearise(wheel, rail_kernel: np.ndarray, contact, *, dt: float, v: float, g
     h = 1e-6 * app
     kc = (table_force(app + h, contact.xi3_nodes, contact.q_nodes)
           - table_force(app - h, contact.xi3_nodes, contact.q_nodes)) / (2 * h)
-    mu0, dmu = mu_and_slope(abs(gamma_y) * v, contact.s_nodes, contact.mu_nodes, contact.slopes)
     A2 = table_compliance(app, contact.xi3_nodes, contact.A2_nodes)
-    return LinearModel(np.asarray(wheel.f_r, float), np.asarray(wheel.modal_mass, float),
+    base = LinearModel(np.asarray(wheel.f_r, float), np.asarray(wheel.modal_mass, float),
                        np.asarray(wheel.zeta, float), np.asarray(wheel.phi, float),
-                       np.asarray(rail_kernel, float), float(dt), float(kc), float(mu0), float(dmu),
-                       float(preload), float(A2))
+                       np.asarray(rail_kernel, float), float(dt), float(kc), 0.0, 0.0, float(preload), float(A2))
+    return operating_point(base, contact, v=v, gamma_y=gamma_y)

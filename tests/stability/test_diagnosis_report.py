@@ -29,9 +29,9 @@ def _need(case):
 
 
 def _screen(lm, labels):
-    from solvers.stability import track_roots, wheel_roots
+    from solvers.stability import screen
 
-    roots = wheel_roots(lm) + track_roots(lm)
+    roots = screen(lm)
     out = {}
     for r in roots:
         key = "LF" if r.mode < 0 else labels[r.mode]
