@@ -34,7 +34,7 @@ STAB_SRC     := solvers/stability.py solvers/interaction.py solvers/green.py pip
 RADIATE_SRC  := postprocess/radiation.py postprocess/force_radiation.py postprocess/spectra.py solvers/receptance.py geometry/wheel.py pipeline/radiate_stage.py
 
 .DEFAULT_GOAL := all
-.PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate stability report study check clean distclean
+.PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate stability stability-map report study check clean distclean
 .DELETE_ON_ERROR:
 
 all: report ## run the default case as far as the stages exist (wheel, rail, contact, greens, simulate, radiate, report)
@@ -110,6 +110,10 @@ report: $(BUILD)/report/$(CASE)/report.md ## one Markdown report of CASE (WHEEL,
 study: | $(STAMP) ## parameter study STUDY=map|damping|contact on Dask -> build/studies/STUDY/; QUICK=1, WORKERS=N, SCHEDULER=tcp://host:port
 	@for c in $(STUDY_CASES); do $(MAKE) --no-print-directory contact greens CASE=$$c || exit 1; done
 	$(PY) -m pipeline study --study $(STUDY) $(if $(QUICK),--quick) $(if $(WORKERS),--workers $(WORKERS)) $(if $(SCHEDULER),--scheduler $(SCHEDULER))
+
+stability-map: | $(STAMP) ## the stability screen over STUDY's grid (seconds; needs the cases' contact and greens) [QUICK=1]
+	@for c in $(STUDY_CASES); do $(MAKE) --no-print-directory contact greens CASE=$$c || exit 1; done
+	$(PY) -m pipeline stability_map --study $(STUDY) $(if $(QUICK),--quick)
 
 # --- quality
 test: | $(STAMP) ## run the test suite (fast; validation tests are skipped)

@@ -20,6 +20,7 @@ STAGES = {
     "simulate": "time-domain wheel/rail interaction of the case (numba) -> build/cases/<case>/simulate.npz",
     "radiate": "sound power of the wheel under the simulated contact forces (Thompson-Jones) -> radiate.npz",
     "stability": "frequency-domain stability screen of the case (linearised time loop) -> stability.npz, .csv, .png",
+    "stability_map": "the stability screen over a map study's grid (--study, --quick) -> build/studies/<study>/stability.csv",
     "report": "gather the case's results (wheel, rail, contact, Green's functions, interaction) -> build/report/<case>/report.md",
     "check": "validate the configuration files only (no computation)",
     "study": "a parameter study on Dask (SPEC 7): --study map|damping|contact -> build/studies/<study>/",
@@ -82,6 +83,10 @@ def main(argv=None) -> int:
                 raise ConfigError(str(case_path), detail=f"no such case; available: {paths.available(paths.CASES)}")
             load(case_path, CASE)
             print(f"wheel {args.wheel}, rail {args.rail} and case {args.case}: configuration OK")
+        elif args.stage == "stability_map":
+            from .stability_map import run_stability_map
+
+            print(run_stability_map(args.study, quick=args.quick))
         elif args.stage == "study":
             from .study_stage import run_study
 

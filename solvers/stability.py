@@ -92,7 +92,12 @@ def _wheel_z(filt, z, skip: int = -1) -> np.ndarray:
     h = _modal_terms(filt, z)[0]
     if skip >= 0:
         h[skip] = 0.0
-    return np.einsum("r,ri,rj->ij", h, filt.w_out, filt.w_in)
+    return (h @ _outer(filt)).reshape(2, 2)
+
+
+def _outer(filt) -> np.ndarray:
+    """(M, 4): w_out[r] w_in[r]^T of every mode, flattened."""
+    return np.einsum("ri,rj->rij", filt.w_out, filt.w_in).reshape(-1, 4)
 
 
 def wheel_receptance_z(model: LinearModel, z: complex) -> np.ndarray:
@@ -103,7 +108,8 @@ def wheel_receptance_z(model: LinearModel, z: complex) -> np.ndarray:
 def rail_receptance_z(kernel: np.ndarray, z: complex) -> np.ndarray:
     """Y^R(z) = sum_{k>=1} g[k] z^-k (2, 2) of the moving kernel."""
     w = np.exp(-np.log(complex(z)) * np.arange(1, kernel.shape[0]))
-    return (w @ kernel[1:].reshape(-1, 4)).reshape(2, 2)
+    K = kernel[1:].reshape(-1, 4)
+    return (w.real @ K + 1j * (w.imag @ K)).reshape(2, 2)
 
 
 def _filter(model: LinearModel):
@@ -164,9 +170,10 @@ class Basis:
         G = g[1:].reshape(len(k), 4)
         self.rail0 = (E @ G).reshape(-1, 2, 2)
         self.rail1 = (-(E * k) @ G).reshape(-1, 2, 2)              # d/ds sum g[k] exp(-s k dt)
-        h = _modal_terms(self.filt, np.exp(self.s0 * dt))
         z0 = np.exp(self.s0 * dt)
-        dh = (_modal_terms(self.filt, np.exp((self.s0 + 1e-3) * dt)) - h) / 1e-3
+        with np.errstate(divide="ignore", invalid="ignore"):             # mode r's own pole, dropped below
+            h = _modal_terms(self.filt, z0)
+            dh = (_modal_terms(self.filt, np.exp((self.s0 + 1e-3) * dt)) - h) / 1e-3
         ww = np.einsum("ri,rj->rij", self.filt.w_out, self.filt.w_in)
         for a, r in enumerate(self.modes):                          # drop mode r from its own rest
             h[a, r] = dh[a, r] = 0.0
@@ -213,27 +220,37 @@ def wheel_roots(model: LinearModel, basis: Basis | None = None, polish: bool = T
     return out
 
 
-def track_roots(model: LinearModel, basis: Basis | None = None) -> list[Root]:
-    """Closed-loop poles of the wheelset on the track inside the basis' (f, sigma) window."""
+def track_roots(model: LinearModel, basis: Basis | None = None, polish: bool = True) -> list[Root]:
+    """Closed-loop poles of the wheelset on the track inside the basis' (f, sigma) window; without
+    ``polish`` one Newton step on the grid's values (D and its s-derivative by central differences
+    along the frequency axis, D being analytic) instead of the secant on the exact D."""
     b = basis if basis is not None else Basis(model)
-    L = np.log(np.abs(_det(model, b.Ygrid, b.Z)))
+    from scipy.ndimage import minimum_filter
+
+    D = _det(model, b.Ygrid, b.Z)
+    L = np.log(np.abs(D))
+    cand = L <= minimum_filter(L, size=3, mode="nearest")
+    cand[:, [0, -1]] = False
     fun = lambda s: characteristic(model, s, b.filt)                                     # noqa: E731
     found = []
-    for i in range(L.shape[0]):
-        for j in range(1, L.shape[1] - 1):
-            if L[i, j] > L[max(i - 1, 0):i + 2, j - 1:j + 2].min():
-                continue
-            s = _secant(fun, complex(b.S[i, j]))
-            if (s is not None and b.f_lo <= s.imag / (2 * np.pi) <= b.f_hi
-                    and b.sigma_lo - 5 <= s.real <= b.sigma_hi and all(abs(s - t) > 1e-4 * abs(s) for t in found)):
-                found.append(s)
+    for i, j in zip(*np.nonzero(cand)):
+        if polish:
+            s = _secant(fun, complex(b.S[i, j]), max_iter=25)
+        else:
+            dD = (D[i, j + 1] - D[i, j - 1]) / (b.S[i, j + 1] - b.S[i, j - 1])
+            s = complex(b.S[i, j] - D[i, j] / dD)
+            if abs(s - b.S[i, j]) > abs(b.S[i, j + 1] - b.S[i, j - 1]) + 10.0:
+                s = None
+        if (s is not None and b.f_lo <= s.imag / (2 * np.pi) <= b.f_hi
+                and b.sigma_lo - 5 <= s.real <= b.sigma_hi and all(abs(s - t) > 1e-4 * abs(s) for t in found)):
+            found.append(s)
     return [Root(s.imag / (2 * np.pi), s.real, -1) for s in sorted(found, key=lambda s: s.imag)]
 
 
 def screen(model: LinearModel, basis: Basis | None = None, polish: bool = True) -> list[Root]:
     """All closed-loop poles the screen seeks, fastest growing first."""
     b = basis if basis is not None else Basis(model)
-    return sorted(wheel_roots(model, b, polish) + track_roots(model, b), key=lambda r: -r.sigma)
+    return sorted(wheel_roots(model, b, polish) + track_roots(model, b, polish), key=lambda r: -r.sigma)
 
 
 def operating_point(model: LinearModel, contact, *, v: float, gamma_y: float) -> LinearModel:

@@ -1,0 +1,111 @@
+"""Stability map: the screen (``solvers.stability``) at every (gamma_y, mu) of a map study's grid
+and contact positions, in seconds; and its agreement with the time loop's map where that exists.
+
+    python -m pipeline stability_map --study map [--quick]      (make stability-map STUDY=map [QUICK=1])
+
+One ``Basis`` per position (the structures' transforms do not depend on friction or creepage),
+one linearisation per mu (k_c, A2 from the normal contact, mu0 and the curve's slope per
+creepage); roots by the first-order expansion about each pole and one grid Newton step for the
+track roots (``polish=False``; tests/stability: unstable poles within 1e-3 1/s of the exact ones).
+
+Outputs in the study's folder (build/studies/<study>[-quick]/): stability.csv (case, dy_wr, gamma_y,
+mu, sigma_max (1/s), f_max (Hz), label_max ('track' or the wheel mode), sigma_lf (fastest track
+root, NaN when none), label_na / sigma_na (fastest (n,0,a) mode)), stability_<case>.png and,
+when the time loop's map.csv is there, stability_agreement.md.
+"""
+from __future__ import annotations
+
+import logging
+import time
+
+import numpy as np
+
+from . import artifacts, paths
+
+log = logging.getLogger("pipeline.stability")
+COLUMNS = ["case", "dy_wr", "gamma_y", "mu", "sigma_max", "f_max", "label_max", "sigma_lf", "label_na", "sigma_na"]
+
+
+def screen_rows(case: str, gammas, mus) -> list[dict]:
+    """The screen at every (gamma_y, mu) of one case's position."""
+    from solvers.interaction import contact_model
+    from solvers.stability import Basis, linearise, operating_point, screen
+
+    from .stability_stage import case_linear_model
+
+    c, lm0, labels, _ = case_linear_model(case)
+    con, _ = artifacts.load_npz(paths.case_dir(case) / "contact.npz", "contact")
+    basis = Basis(lm0)
+    v, rows = c["kinematics"]["speed"], []
+    for mu in mus:
+        cm = contact_model(con, float(mu))
+        lm_mu = lm0 if mu == c["friction"]["mu"] else linearise(
+            _wheel(lm0), lm0.rail_kernel, cm, dt=lm0.dt, v=v, gamma_y=float(gammas[0]), preload=lm0.F3)
+        for gy in gammas:
+            roots = screen(operating_point(lm_mu, cm, v=v, gamma_y=float(gy)), basis, polish=False)
+            lab = lambda r: "track" if r.mode < 0 else str(labels[r.mode])              # noqa: E731
+            lf = [r for r in roots if r.mode < 0]
+            na = [r for r in roots if r.mode >= 0 and lab(r).endswith(",0,a)")]
+            rows.append({"case": case, "dy_wr": c["contact"]["dy_wr"], "gamma_y": float(gy), "mu": float(mu),
+                         "sigma_max": roots[0].sigma, "f_max": roots[0].f_hz, "label_max": lab(roots[0]),
+                         "sigma_lf": lf[0].sigma if lf else np.nan,
+                         "label_na": lab(na[0]) if na else "", "sigma_na": na[0].sigma if na else np.nan})
+    return rows
+
+
+def _wheel(lm):
+    from solvers.interaction import WheelModes
+
+    return WheelModes(lm.f_r, lm.modal_mass, lm.zeta, lm.phi)
+
+
+def run_stability_map(study: str, quick: bool = False) -> str:
+    from .study_map import grid_of
+    from .study_stage import load_study
+
+    spec, _ = load_study(study)
+    gammas, mus = grid_of(spec, quick)
+    out = paths.BUILD / "studies" / (study + ("-quick" if quick else ""))
+    out.mkdir(parents=True, exist_ok=True)
+    t0 = time.perf_counter()
+    rows = [r for case in spec["cases"] for r in screen_rows(case, gammas, mus)]
+    wall = time.perf_counter() - t0
+    fmt = lambda x: f"{x:.6g}" if isinstance(x, float) else str(x)                         # noqa: E731
+    artifacts.save_csv(out / "stability.csv", COLUMNS, [[fmt(r[k]) for k in COLUMNS] for r in rows])
+    for case in spec["cases"]:
+        plot_map([r for r in rows if r["case"] == case], gammas, mus, out / f"stability_{case}.png", case)
+    log.info("stability map %s: %d cases in %.2f s (%.1f ms per case) -> %s", study, len(rows), wall,
+             1e3 * wall / max(len(rows), 1), out / "stability.csv")
+    if (out / "map.csv").exists():
+        from .stability_agreement import write_agreement
+
+        write_agreement(out, rows, spec)
+    return str(out / "stability.csv")
+
+
+def plot_map(rows: list[dict], gammas, mus, path, case: str) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    S = np.full((len(mus), len(gammas)), np.nan)
+    labels = {}
+    for r in rows:
+        i, j = int(np.argmin(np.abs(mus - r["mu"]))), int(np.argmin(np.abs(gammas - r["gamma_y"])))
+        S[i, j] = r["sigma_max"]
+        labels[(i, j)] = r["label_max"] if r["sigma_max"] > 0 else ""
+    fig, ax = plt.subplots(figsize=(9, 4))
+    lim = np.nanmax(np.abs(S)) if np.isfinite(S).any() else 1.0
+    im = ax.pcolormesh(-gammas, mus, S, cmap="RdBu_r", vmin=-lim, vmax=lim, shading="nearest")
+    fig.colorbar(im, ax=ax, label="largest growth rate (1/s)")
+    for (i, j), lab in labels.items():
+        if lab:
+            ax.text(-gammas[j], mus[i], lab.replace("track", "LF"), ha="center", va="center", fontsize=5, rotation=90)
+    ax.set_xlabel("-gamma_y")
+    ax.set_ylabel("mu")
+    ax.set_title(f"Stability screen, {case}: fastest-growing pole (label where unstable)")
+    fig.tight_layout()
+    with artifacts.atomic_write(path) as tmp:
+        fig.savefig(tmp, dpi=100)
+    plt.close(fig)
