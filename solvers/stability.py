@@ -250,7 +250,11 @@ def track_roots(model: LinearModel, basis: Basis | None = None, polish: bool = T
 def screen(model: LinearModel, basis: Basis | None = None, polish: bool = True) -> list[Root]:
     """All closed-loop poles the screen seeks, fastest growing first."""
     b = basis if basis is not None else Basis(model)
-    return sorted(wheel_roots(model, b, polish) + track_roots(model, b, polish), key=lambda r: -r.sigma)
+    wheel = wheel_roots(model, b, polish)
+    # a track root found again at a wheel root (the grid also sees the modes between 20 and 400 Hz)
+    track = [t for t in track_roots(model, b, polish)
+             if all(abs(complex(t.sigma, t.f_hz) - complex(w.sigma, w.f_hz)) > 1e-3 * w.f_hz + 0.5 for w in wheel)]
+    return sorted(wheel + track, key=lambda r: -r.sigma)
 
 
 def operating_point(model: LinearModel, contact, *, v: float, gamma_y: float) -> LinearModel:
