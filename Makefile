@@ -31,9 +31,10 @@ CONTACT_SRC  := $(wildcard solvers/contact/*.py) pipeline/contact_stage.py geome
 GREENS_SRC   := solvers/green.py solvers/receptance.py solvers/rail_response.py pipeline/greens_stage.py
 SIM_SRC      := solvers/interaction.py pipeline/simulate_stage.py postprocess/spectra.py
 RADIATE_SRC  := postprocess/radiation.py postprocess/force_radiation.py postprocess/spectra.py solvers/receptance.py geometry/wheel.py pipeline/radiate_stage.py
+LISTEN_SRC   := postprocess/listener.py postprocess/audio.py postprocess/spectra.py pipeline/listen_stage.py pipeline/listen_plot.py
 
 .DEFAULT_GOAL := all
-.PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate report study check clean distclean
+.PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate listen report study check clean distclean FORCE
 .DELETE_ON_ERROR:
 
 all: report ## run the default case as far as the stages exist (wheel, rail, contact, greens, simulate, radiate, report)
@@ -89,7 +90,14 @@ $(C)/simulate.npz: $(CFILE) $(C)/contact.npz $(C)/greens.npz $(SIM_SRC) | $(STAM
 $(C)/radiate.npz: $(CFILE) $(W)/modes.npz $(C)/simulate.npz $(RADIATE_SRC) | $(STAMP)
 	$(PY) -m pipeline radiate --case $(CASE)
 
-$(BUILD)/report/$(CASE)/report.md: $(CFILE) $(W)/modes.npz $(W)/shapes/gallery.png $(R)/rail.npz $(C)/contact.npz $(C)/greens.npz $(C)/simulate.npz $(C)/radiate.npz pipeline/report.py pipeline/study_report.py $(wildcard $(BUILD)/studies/*/summary.md) | $(STAMP)
+# the receiver: the case's [listener] table, or DISTANCE=, HEIGHT= (m); ALLOW_SILENT=1 for a case that does not squeal
+$(C)/listen.npz: $(CFILE) $(WFILE) $(C)/radiate.npz $(C)/simulate.npz $(LISTEN_SRC) $(if $(DISTANCE)$(HEIGHT)$(ALLOW_SILENT),FORCE) | $(STAMP)
+	$(PY) -m pipeline listen --case $(CASE) $(if $(DISTANCE),--distance $(DISTANCE)) $(if $(HEIGHT),--height $(HEIGHT)) $(if $(ALLOW_SILENT),--allow-silent)
+
+FORCE:
+
+# the listening section is in the report when `make listen` has run (as the studies)
+$(BUILD)/report/$(CASE)/report.md: $(CFILE) $(W)/modes.npz $(W)/shapes/gallery.png $(R)/rail.npz $(C)/contact.npz $(C)/greens.npz $(C)/simulate.npz $(C)/radiate.npz pipeline/report.py pipeline/study_report.py $(wildcard $(BUILD)/studies/*/summary.md) $(wildcard $(C)/listen.npz) | $(STAMP)
 	$(PY) -m pipeline report --case $(CASE)
 
 mesh: $(W)/mesh.json ## Gmsh cross-section of WHEEL -> build/wheels/WHEEL/section.msh
@@ -99,6 +107,7 @@ contact: $(C)/contact.npz ## contact of CASE: gap, NORM table, compliance, frict
 greens: $(C)/greens.npz ## Green's functions of CASE: wheel (Kropp + modal filters), moving rail kernel
 simulate: $(C)/simulate.npz ## time-domain interaction of CASE: force histories, L_F2, dominant frequency
 radiate: $(C)/radiate.npz ## sound power of CASE's wheel under the simulated forces: W(f), L_W, per harmonic, unit-force curves
+listen: $(C)/listen.npz ## what a listener hears: L_p, L_pA, 1/3 octaves, a calibrated WAV of the squeal; DISTANCE=, HEIGHT=, ALLOW_SILENT=1
 report: $(BUILD)/report/$(CASE)/report.md ## one Markdown report of CASE (WHEEL, RAIL must be the case's)
 
 # --- studies (SPEC 7): the cases' artifacts first, then the study on Dask (resumes when interrupted)
