@@ -90,9 +90,12 @@ $(C)/simulate.npz: $(CFILE) $(C)/contact.npz $(C)/greens.npz $(SIM_SRC) | $(STAM
 $(C)/radiate.npz: $(CFILE) $(W)/modes.npz $(C)/simulate.npz $(RADIATE_SRC) | $(STAMP)
 	$(PY) -m pipeline radiate --case $(CASE)
 
-# the receiver: the case's [listener] table, or DISTANCE=, HEIGHT= (m); ALLOW_SILENT=1 for a case that does not squeal
-$(C)/listen.npz: $(CFILE) $(WFILE) $(C)/radiate.npz $(C)/simulate.npz $(LISTEN_SRC) $(if $(DISTANCE)$(HEIGHT)$(ALLOW_SILENT),FORCE) | $(STAMP)
-	$(PY) -m pipeline listen --case $(CASE) $(if $(DISTANCE),--distance $(DISTANCE)) $(if $(HEIGHT),--height $(HEIGHT)) $(if $(ALLOW_SILENT),--allow-silent)
+# the receiver: the case's [listener] table, or DISTANCE=, HEIGHT= (m); ALLOW_SILENT=1 for a case that does not
+# squeal.  A run with these always runs and leaves listen.override, so that the next plain run restores the case's own
+LISTEN_ARGS = $(strip $(if $(DISTANCE),--distance $(DISTANCE)) $(if $(HEIGHT),--height $(HEIGHT)) $(if $(ALLOW_SILENT),--allow-silent))
+$(C)/listen.npz: $(CFILE) $(WFILE) $(C)/radiate.npz $(C)/simulate.npz $(LISTEN_SRC) $(if $(LISTEN_ARGS)$(wildcard $(C)/listen.override),FORCE) | $(STAMP)
+	$(PY) -m pipeline listen --case $(CASE) $(LISTEN_ARGS)
+	@$(if $(LISTEN_ARGS),touch,rm -f) $(C)/listen.override
 
 FORCE:
 

@@ -169,10 +169,13 @@ def listen_section(case: str, figdir) -> str:
             "levels are those of its non-squealing forces and the WAV is silent.")
     return head + f"""Receiver {float(a['distance']):g} m from the track centre, {float(a['height']):g} m above the top of the rail
 (the squealing wheel's centre {float(a['r_direct']):.2f} m away; {a['ground']} ground {float(a['ground_depth']):g} m below
-the rail, image source; {a['directivity']} source along the axle; air absorption ISO 9613-1).{flag}
+the rail, image source; {'a dipole along the axle' if str(a['directivity']) == 'dipole' else 'omnidirectional'};
+air absorption ISO 9613-1).{flag}
 L_p = {float(a['L_p']):.1f} dB, **L_pA = {float(a['L_pA']):.1f} dB(A)** (ground reflection added incoherently:
 {float(a['L_p_incoherent']):.1f} dB, {float(a['L_pA_incoherent']):.1f} dB(A)); loudest at {float(a['f_peak']):.1f} Hz
-(sound power peak {float(a['f_sound']):.1f} Hz). Bands within 40 dB of the overall level:
+(sound power peak {float(a['f_sound']):.1f} Hz). A pure tone over a rigid ground interferes with its reflection:
+the coherent level depends on the exact position, the incoherent one is its average over positions. Bands within
+40 dB of the overall level:
 
 {chr(10).join(rows)}
 
