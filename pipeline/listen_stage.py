@@ -108,11 +108,15 @@ def listen_config(case: str, lis: dict, pw: dict) -> tuple[dict, dict, dict]:
 def _onset(sim: dict, case: str):
     from postprocess.audio import growth_envelope, onset_from_history
 
+    path = paths.case_dir(case) / "simulate.npz"
     for key in ("t", "F"):
         if key not in sim:
-            raise artifacts.ArtifactError(paths.case_dir(case) / "simulate.npz", f"has no key {key!r} (the force "
-                                          f"history); rebuild it with `make simulate CASE={case}`")
-    t, env = growth_envelope(sim["t"], sim["F"][:, 1])
+            raise artifacts.ArtifactError(path, f"has no key {key!r} (the force history); rebuild it with "
+                                          f"`make simulate CASE={case}`")
+    try:
+        t, env = growth_envelope(sim["t"], sim["F"][:, 1], f_tone=float(sim["f_dominant"]))
+    except ValueError as e:
+        raise artifacts.ArtifactError(path, f"no onset envelope from its force history: {e}") from None
     return onset_from_history(t, env)
 
 

@@ -48,17 +48,33 @@ FADE_S = 0.01  # s, raised-cosine fade in and out
 SILENT_FULL_SCALE_PA = 1.0  # Pa at full scale for a silent file (nominal)
 
 
-def growth_envelope(t, x, window: float = ENVELOPE_WINDOW_S, reference: float = REFERENCE_S):
+def aliased(f: float, fs: float) -> float:
+    """The frequency (Hz) a tone at f shows at the sample rate fs (folded into 0..fs/2)."""
+    r = float(f) % fs
+    return min(r, fs - r)
+
+
+def growth_envelope(t, x, window: float = ENVELOPE_WINDOW_S, reference: float = REFERENCE_S,
+                    f_tone: float | None = None):
     """Running RMS of ``x(t)`` (running mean removed, both over ``window`` s),
     divided by the RMS of x (mean removed) over the last ``reference`` s.
-    Returns (t, envelope); the envelope is 1 in the limit cycle.  Raises
-    ValueError when the history has no oscillation at its end."""
+    Returns (t, envelope); the envelope is 1 in the limit cycle.  The stored
+    history is decimated, so the tone ``f_tone`` (Hz) may alias: the window is
+    widened to 3 periods of its aliased frequency.  Raises ValueError when the
+    history has no oscillation at its end, or the tone aliases to below
+    3 / ``reference`` Hz (no envelope can be told from the mean force)."""
     from scipy.ndimage import uniform_filter1d
 
     t, x = np.asarray(t, float), np.asarray(x, float)
     if t.size < 8 or t.shape != x.shape:
         raise ValueError(f"history: need matching t, x with >= 8 samples, got {t.shape}, {x.shape}")
     dt = float(np.median(np.diff(t)))
+    if f_tone is not None and np.isfinite(f_tone):
+        fa = aliased(f_tone, 1 / dt)
+        if not fa > 3 / reference:
+            raise ValueError(f"history: the tone at {f_tone:.1f} Hz aliases to {fa:.2f} Hz at the history's sample "
+                             f"rate {1 / dt:.1f} Hz: its envelope cannot be told from the mean force")
+        window = max(window, 3 / fa)
     n = max(3, int(round(window / dt)))
     mean = uniform_filter1d(x, n, mode="nearest")
     env = np.sqrt(np.maximum(uniform_filter1d((x - mean) ** 2, n, mode="nearest"), 0.0))

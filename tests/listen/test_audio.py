@@ -36,6 +36,23 @@ def test_growth_envelope_follows_exponential_growth(f0):
     assert on.gain[-1] == on.gain[-2] == 1.0 and on.gain[0] == pytest.approx(np.exp(-sigma * 0.5) * 0.89, rel=0.1)
 
 
+def test_growth_envelope_of_a_tone_aliased_near_zero():
+    # the history's rate is 2777.8 Hz: a tone 12 Hz below it shows at 12 Hz; the window widens to 3 periods
+    dt = 360e-6
+    t = np.arange(0, 3.0, dt)
+    f0 = 1 / dt - 12.0
+    amp = np.exp(4.0 * (np.minimum(t, 2.0) - 2.0))
+    x = -3000.0 + 500.0 * amp * np.cos(2 * np.pi * f0 * t)
+    assert A.aliased(f0, 1 / dt) == pytest.approx(12.0)
+    _, plain = A.growth_envelope(t, x)
+    _, env = A.growth_envelope(t, x, f_tone=f0)
+    mid = (t > 0.5) & (t < 1.6)
+    assert np.polyfit(t[mid], np.log(env[mid]), 1)[0] == pytest.approx(4.0, rel=0.03)
+    assert np.abs(np.log(plain[mid] / amp[mid])).max() > 0.5  # a 20 ms window alone would not see it
+    with pytest.raises(ValueError, match="aliases to 2.00 Hz"):
+        A.growth_envelope(t, x, f_tone=1 / dt - 2.0)
+
+
 def test_growth_envelope_refuses_a_constant_force():
     t = np.arange(1000) * 360e-6
     with pytest.raises(ValueError, match="no oscillation"):
