@@ -35,10 +35,10 @@ def plot_listening(a: dict, path, case: str) -> None:
                  f"the rail\n(wheel centre {float(a['r_direct']):.2f} m away; {a['ground']} ground "
                  f"{float(a['ground_depth']):g} m below the rail, {a['directivity']} source){flag}", fontsize=9)
     t, g = a["onset_t"], a["onset_gain"]
-    with np.errstate(divide="ignore"):
-        ax2.plot(t, 20 * np.log10(np.maximum(g, 1e-12)) + float(a["L_p"]), lw=0.8)
+    Lp = float(a["L_p"]) if np.isfinite(a["L_p"]) else 0.0  # -inf: no sound power at all
+    ax2.plot(t, 20 * np.log10(np.maximum(g, 1e-12)) + Lp, lw=0.8)
     ax2.axvline(float(a["t_limit_cycle"]), color="k", lw=0.6, ls="--", label="limit cycle from here")
-    ax2.set_ylim(float(a["L_p"]) - 60, float(a["L_p"]) + 10)
+    ax2.set_ylim(Lp - 60, Lp + 10)
     ax2.set_xlabel("time in the WAV (s)")
     ax2.set_ylabel("L_p envelope (dB)")
     ax2.set_title(f"the sound: onset from the growth phase, then the limit cycle ({float(a['wav_duration']):.2f} s, "
