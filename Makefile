@@ -32,9 +32,10 @@ GREENS_SRC   := solvers/green.py solvers/receptance.py solvers/rail_response.py 
 SIM_SRC      := solvers/interaction.py pipeline/simulate_stage.py postprocess/spectra.py
 STAB_SRC     := solvers/stability.py solvers/interaction.py solvers/green.py pipeline/stability_stage.py
 RADIATE_SRC  := postprocess/radiation.py postprocess/force_radiation.py postprocess/spectra.py solvers/receptance.py geometry/wheel.py pipeline/radiate_stage.py
+LISTEN_SRC   := postprocess/listener.py postprocess/audio.py postprocess/spectra.py pipeline/listen_stage.py pipeline/listen_plot.py
 
 .DEFAULT_GOAL := all
-.PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate stability stability-map report study check clean distclean
+.PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate stability stability-map listen report study check clean distclean FORCE
 .DELETE_ON_ERROR:
 
 all: report ## run the default case as far as the stages exist (wheel, rail, contact, greens, simulate, radiate, report)
@@ -93,7 +94,17 @@ $(C)/radiate.npz: $(CFILE) $(W)/modes.npz $(C)/simulate.npz $(RADIATE_SRC) | $(S
 $(C)/stability.npz: $(CFILE) $(C)/contact.npz $(C)/greens.npz $(STAB_SRC) | $(STAMP)
 	$(PY) -m pipeline stability --case $(CASE)
 
-$(BUILD)/report/$(CASE)/report.md: $(CFILE) $(W)/modes.npz $(W)/shapes/gallery.png $(R)/rail.npz $(C)/contact.npz $(C)/greens.npz $(C)/simulate.npz $(C)/radiate.npz pipeline/report.py pipeline/study_report.py $(wildcard $(BUILD)/studies/*/summary.md) | $(STAMP)
+# the receiver: the case's [listener] table, or DISTANCE=, HEIGHT= (m); ALLOW_SILENT=1 for a case that does not
+# squeal.  A run with these always runs and leaves listen.override, so that the next plain run restores the case's own
+LISTEN_ARGS = $(strip $(if $(DISTANCE),--distance $(DISTANCE)) $(if $(HEIGHT),--height $(HEIGHT)) $(if $(ALLOW_SILENT),--allow-silent))
+$(C)/listen.npz: $(CFILE) $(WFILE) $(C)/radiate.npz $(C)/simulate.npz $(LISTEN_SRC) $(if $(LISTEN_ARGS)$(wildcard $(C)/listen.override),FORCE) | $(STAMP)
+	$(PY) -m pipeline listen --case $(CASE) $(LISTEN_ARGS)
+	@$(if $(LISTEN_ARGS),touch,rm -f) $(C)/listen.override
+
+FORCE:
+
+# the listening section is in the report when `make listen` has run (as the studies)
+$(BUILD)/report/$(CASE)/report.md: $(CFILE) $(W)/modes.npz $(W)/shapes/gallery.png $(R)/rail.npz $(C)/contact.npz $(C)/greens.npz $(C)/simulate.npz $(C)/radiate.npz pipeline/report.py pipeline/study_report.py $(wildcard $(BUILD)/studies/*/summary.md) $(wildcard $(C)/listen.npz) | $(STAMP)
 	$(PY) -m pipeline report --case $(CASE)
 
 mesh: $(W)/mesh.json ## Gmsh cross-section of WHEEL -> build/wheels/WHEEL/section.msh
@@ -104,6 +115,7 @@ greens: $(C)/greens.npz ## Green's functions of CASE: wheel (Kropp + modal filte
 simulate: $(C)/simulate.npz ## time-domain interaction of CASE: force histories, L_F2, dominant frequency
 radiate: $(C)/radiate.npz ## sound power of CASE's wheel under the simulated forces: W(f), L_W, per harmonic, unit-force curves
 stability: $(C)/stability.npz ## frequency-domain stability screen of CASE: closed-loop poles, growth rates, mode labels
+listen: $(C)/listen.npz ## what a listener hears: L_p, L_pA, 1/3 octaves, a calibrated WAV of the squeal; DISTANCE=, HEIGHT=, ALLOW_SILENT=1
 report: $(BUILD)/report/$(CASE)/report.md ## one Markdown report of CASE (WHEEL, RAIL must be the case's)
 
 # --- studies (SPEC 7): the cases' artifacts first, then the study on Dask (resumes when interrupted)

@@ -21,6 +21,7 @@ STAGES = {
     "radiate": "sound power of the wheel under the simulated contact forces (Thompson-Jones) -> radiate.npz",
     "stability": "frequency-domain stability screen of the case (linearised time loop) -> stability.npz, .csv, .png",
     "stability_map": "the stability screen over a map study's grid (--study, --quick) -> build/studies/<study>/stability.csv",
+    "listen": "what a listener hears: sound pressure at a receiver, dB(A), 1/3 octaves, a calibrated WAV -> listen.*",
     "report": "gather the case's results (wheel, rail, contact, Green's functions, interaction) -> build/report/<case>/report.md",
     "check": "validate the configuration files only (no computation)",
     "study": "a parameter study on Dask (SPEC 7): --study map|damping|contact -> build/studies/<study>/",
@@ -58,6 +59,12 @@ def main(argv=None) -> int:
                                                       "instead of a local cluster")
     ap.add_argument("--out", default=None, help="study: output folder (default build/studies/<study>[-quick])")
     ap.add_argument("--no-progress", action="store_true", help="study: no progress bar")
+    ap.add_argument("--distance", type=float, default=None,
+                    help="listen: receiver from the track centre (m; default: the case's [listener], 7.5)")
+    ap.add_argument("--height", type=float, default=None,
+                    help="listen: receiver above the top of the rail (m; default: the case's [listener], 1.2)")
+    ap.add_argument("--allow-silent", action="store_true",
+                    help="listen: for a case that does not squeal, write the levels and a silent WAV")
     ap.add_argument("-v", "--verbose", action="count", default=0, help="more logging (-vv for debug)")
     ap.add_argument("-q", "--quiet", action="store_true", help="warnings and errors only")
     args = ap.parse_args(argv)
@@ -92,6 +99,10 @@ def main(argv=None) -> int:
 
             print(run_study(args.study, quick=args.quick, scheduler=args.scheduler, workers=args.workers,
                             out=args.out, progress=not args.no_progress))
+        elif args.stage == "listen":
+            from .listen_stage import run_listen
+
+            run_listen(args.case, distance=args.distance, height=args.height, allow_silent=args.allow_silent)
         else:
             module, func, arg = RUNNERS[args.stage]
             run = getattr(importlib.import_module(f".{module}", __package__), func)

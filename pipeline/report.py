@@ -145,6 +145,49 @@ Overall L_W = {float(a['L_W']):.1f} dB re 1e-12 W; loudest at {float(a['f_sound'
 """
 
 
+def listen_section(case: str, figdir) -> str:
+    """'What a listener hears' (pipeline/listen_stage.py), when `make listen` has run for the
+    current radiate and simulate artifacts; the spectrum and the WAV copied beside the report."""
+    from .listen_stage import load_listening
+
+    head = "## What a listener hears\n\n"
+    if not (paths.case_dir(case) / "listen.npz").exists():
+        return head + f"Not computed yet: `make listen CASE={case}` (then `make report CASE={case}`).\n"
+    try:
+        a, _ = load_listening(case)
+    except artifacts.ArtifactError as e:
+        return head + f"Not shown: {e}\n"
+    cdir = paths.case_dir(case)
+    for name in ("listen.png", "listen.wav", "listen.json"):
+        shutil.copy2(cdir / name, figdir / f"{case}_{name}")
+    sel = np.isfinite(a["band_L_p"]) & (a["band_L_p"] >= float(a["L_p"]) - 40)
+    rows = ["| band (Hz) | " + " | ".join(f"{v:g}" for v in a["band_nominal"][sel]) + " |",
+            "|---|" + "---:|" * int(sel.sum())]
+    for key, name in (("band_L_p", "L_p (dB)"), ("band_L_pA", "L_pA (dB(A))")):
+        rows.append(f"| {name} | " + " | ".join(f"{v:.1f}" for v in a[key][sel]) + " |")
+    flag = ("" if a["meaningful"] else f" The case does not squeal (L_F2 = {float(a['L_F2']):.1f} dB < 10 dB): the "
+            "levels are those of its non-squealing forces and the WAV is silent.")
+    return head + f"""Receiver {float(a['distance']):g} m from the track centre, {float(a['height']):g} m above the top of the rail
+(the squealing wheel's centre {float(a['r_direct']):.2f} m away; {a['ground']} ground {float(a['ground_depth']):g} m below
+the rail, image source; {'a dipole along the axle' if str(a['directivity']) == 'dipole' else 'omnidirectional'};
+air absorption ISO 9613-1).{flag}
+L_p = {float(a['L_p']):.1f} dB, **L_pA = {float(a['L_pA']):.1f} dB(A)** (ground reflection added incoherently:
+{float(a['L_p_incoherent']):.1f} dB, {float(a['L_pA_incoherent']):.1f} dB(A)); loudest at {float(a['f_peak']):.1f} Hz
+(sound power peak {float(a['f_sound']):.1f} Hz). A pure tone over a rigid ground interferes with its reflection:
+the coherent level depends on the exact position, the incoherent one is its average over positions. Bands within
+40 dB of the overall level:
+
+{chr(10).join(rows)}
+
+![1/3-octave spectrum at the receiver](figures/{case}_listen.png)
+
+The sound: [listen.wav](figures/{case}_listen.wav) ({float(a['wav_duration']):.2f} s, 44.1 kHz, 16 bit; the onset from
+the simulation's growth phase, the limit cycle from {float(a['t_limit_cycle']):.2f} s). Calibration
+([listen.json](figures/{case}_listen.json)): a 0 dBFS sine is {float(a['full_scale_sine_dB']):.1f} dB SPL; read back,
+the limit cycle in the file is {float(a['wav_L_p']):.1f} dB at {float(a['wav_f_peak']):.1f} Hz.
+"""
+
+
 def run_report(case: str) -> str:
     cpath = paths.case_file(case)
     c = load(cpath, CASE)
@@ -161,6 +204,7 @@ def run_report(case: str) -> str:
     sections.append(greens_section(case, figdir))
     sections.append(simulate_section(case, figdir))
     sections.append(radiate_section(case, figdir))
+    sections.append(listen_section(case, figdir))
     from .study_report import studies_section
 
     sections.append(studies_section(figdir))

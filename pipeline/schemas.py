@@ -88,6 +88,20 @@ WHEEL = {
     },
 }
 
+# the receiver of the `listen` stage (postprocess/listener.py states the propagation model)
+LISTENER = {
+    "distance": Field(float, unit="m", min=0.0, max=1000.0, min_inclusive=False, default=7.5,
+                      doc="receiver from the track centre, horizontally (ISO 3095 pass-by position: 7.5 m)"),
+    "height": Field(float, unit="m", min=0.0, max=100.0, min_inclusive=False, default=1.2,
+                    doc="receiver above the top of the rail (ISO 3095: 1.2 m)"),
+    "ground_depth": Field(float, unit="m", min=0.0, max=5.0, default=0.2,
+                          doc="reflecting ground plane below the top of the rail (ballast surface)"),
+    "ground": Field(str, choices=["rigid", "none"], default="rigid",
+                    doc="'rigid': image source in the ground plane; 'none': free field"),
+    "directivity": Field(str, choices=["dipole", "omni"], default="dipole",
+                         doc="the wheel as a dipole along the axle (axial squeal modes) or omnidirectional"),
+}
+
 CASE = {
     "name": Field(str),
     "description": Field(str, default=""),
@@ -117,6 +131,7 @@ CASE = {
         "dt": Field(float, unit="s", min=1e-6, max=2e-4, doc="time step; dx = v dt"),
         "duration": Field(float, unit="s", min=0.01, max=8.0, doc="at most this much rolling"),
     },
+    "listener": LISTENER,
 }
 
 RAIL = {

@@ -151,3 +151,24 @@ def test_killed_stage_leaves_no_complete_artifact(built, tmp_path):
 
     with pytest.raises(ArtifactError):
         load_npz(target, "wheel-modes")
+
+
+def test_make_listen_then_report(built):
+    """Issue 16: `make listen` writes the sound and its calibration, a receiver from the command line
+    reruns it (and the next plain run restores the case's receiver), the report embeds the section."""
+    c = built / "cases" / "default"
+    r = make("listen", build=built)
+    assert r.returncode == 0, r.stdout + r.stderr
+    for f in ("listen.npz", "listen.wav", "listen.json", "listen.png"):
+        assert (c / f).exists(), f
+    assert make("-q", "listen", build=built).returncode == 0
+    r = make("listen", "DISTANCE=20", "HEIGHT=3", build=built)
+    assert r.returncode == 0 and "--distance 20 --height 3" in r.stdout, r.stdout + r.stderr
+    assert make("-q", "listen", build=built).returncode != 0
+    assert make("listen", build=built).returncode == 0 and make("-q", "listen", build=built).returncode == 0
+    r = make("report", build=built)
+    assert r.returncode == 0, r.stdout + r.stderr
+    text = (built / "report" / "default" / "report.md").read_text()
+    assert "## What a listener hears" in text and "Receiver 7.5 m from the track centre" in text
+    assert (built / "report" / "default" / "figures" / "default_listen.wav").exists()
+    assert make("-q", "all", build=built).returncode == 0
