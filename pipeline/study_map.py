@@ -37,9 +37,22 @@ def case_key(case: str, gamma_y: float, mu: float) -> str:
     return f"{case}|gamma_y={gamma_y:+.5f}|mu={mu:.3f}"
 
 
+def screened(spec: dict, quick: bool) -> dict:
+    """{case_key: sigma_max} of the stability screen over the grid (pipeline.stability_map), when the
+    study sets simulation.screen_margin; else {}."""
+    if spec["simulation"].get("screen_margin") is None:
+        return {}
+    from .stability_map import screen_rows
+
+    gammas, mus = grid_of(spec, quick)
+    return {case_key(r["case"], r["gamma_y"], r["mu"]): r["sigma_max"]
+            for case in spec["cases"] for r in screen_rows(case, gammas, mus)}
+
+
 def tasks_of(spec: dict, src: str, contexts: dict, quick: bool) -> list[Task]:
     gammas, mus = grid_of(spec, quick)
     sim = spec["simulation"]
+    sigma = screened(spec, quick)
     tasks = []
     for case, ctx in contexts.items():
         avail = np.asarray(ctx.contact["mu_values"], float)
@@ -51,10 +64,13 @@ def tasks_of(spec: dict, src: str, contexts: dict, quick: bool) -> list[Task]:
         inputs = config_hash({"context": ctx.inputs, "simulation": sim})
         for gy in gammas:
             for mu in mus:
-                tasks.append(Task(case_key(case, gy, mu), inputs, case,
-                                  {"gamma_y": float(gy), "mu": float(mu), "duration": sim["duration"],
-                                   "early_stop": sim["early_stop"], "final": sim["final"], "window": sim["window"],
-                                   "level": sim["squeal_level"]}))
+                key = case_key(case, gy, mu)
+                p = {"gamma_y": float(gy), "mu": float(mu), "duration": sim["duration"],
+                     "early_stop": sim["early_stop"], "final": sim["final"], "window": sim["window"],
+                     "level": sim["squeal_level"]}
+                if key in sigma and sigma[key] < -sim["screen_margin"]:
+                    p["screened"] = float(sigma[key])
+                tasks.append(Task(key, inputs, case, p))
     return tasks
 
 

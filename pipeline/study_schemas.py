@@ -24,6 +24,9 @@ SIMULATION = {
                     doc="window of the early-stop rule (solvers.interaction.StopRule; 0.25 s as the simulate stage)"),
     "squeal_level": Field(float, unit="dB", min=-100.0, max=200.0, default=10.0,
                           doc="squeal when L_F2 >= this; sound power only then (SPEC 6)"),
+    "screen_margin": Field(float, unit="1/s", min=0.0, max=1000.0, default=None,
+                           doc="map: run the stability screen first and do not simulate the cases whose fastest "
+                               "pole grows slower than -screen_margin (recorded as 'screened'); unset: simulate all"),
 }
 
 GAMMA = dict(kind=float, min=-0.2, max=0.2)

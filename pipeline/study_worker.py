@@ -83,6 +83,9 @@ def _measures(ctx, res, p, radiation=CASE_MODEL) -> dict:
 def map_case(ctx, p) -> dict:
     """Creepage/friction map (SPEC 7): the full wheel model at (gamma_y, mu)."""
     row = {"case": ctx.case, "dy_wr": ctx.dy_wr, "gamma_y": p["gamma_y"], "mu": p["mu"]}
+    if "screened" in p:                 # the stability screen found every pole decaying: not simulated
+        return row | {k: NAN for k in ("L_F2", "f_dominant", "F2_pp", "F2_mean", "contact_loss", "L_W", "f_sound")} | {
+            "stop_reason": f"screened (sigma_max {p['screened']:+.2f}/s)", "t_end": 0.0}
     return row | _measures(ctx, _run(ctx, _wheel(ctx), p), p)
 
 
