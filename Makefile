@@ -28,8 +28,8 @@ MODES_SRC    := solvers/axisym.py solvers/classify.py solvers/wheelset.py pipeli
 SHAPES_SRC   := postprocess/mode_shapes.py
 RAIL_SRC     := geometry/rail.py geometry/mesher.py solvers/waveguide.py solvers/rail_response.py pipeline/rail_stage.py
 CONTACT_SRC  := $(wildcard solvers/contact/*.py) pipeline/contact_stage.py geometry/wheel.py geometry/rail.py
-GREENS_SRC   := solvers/green.py solvers/receptance.py solvers/rail_response.py pipeline/greens_stage.py
-SIM_SRC      := solvers/interaction.py pipeline/simulate_stage.py postprocess/spectra.py
+GREENS_SRC   := solvers/green.py solvers/receptance.py solvers/rail_response.py solvers/moving_kernel.py pipeline/rail_kernel.py pipeline/greens_stage.py
+SIM_SRC      := solvers/interaction.py solvers/green.py solvers/partitioned.py pipeline/simulate_stage.py postprocess/spectra.py
 RADIATE_SRC  := postprocess/radiation.py postprocess/force_radiation.py postprocess/spectra.py solvers/receptance.py geometry/wheel.py pipeline/radiate_stage.py
 
 .DEFAULT_GOAL := all
