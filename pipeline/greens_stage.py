@@ -60,13 +60,31 @@ def greens_inputs(case: str):
     pr, _ = load_rail_params(c["rail"])
     modes, mprov = artifacts.load_npz(paths.wheel_dir(c["wheel"]) / "modes.npz", "wheel-modes", pw,
                                       make_target=f"modes WHEEL={c['wheel']}")
-    _, rprov = artifacts.load_npz(paths.rail_dir(c["rail"]) / "rail.npz", "rail", pr, make_target=f"rail RAIL={c['rail']}")
+    rprov = _rail_provenance(c["rail"], pr)
     yw, yr = NOMINAL_POSITIONS[round(c["contact"]["dy_wr"], 3)]
     cfg = {"case": {k: c[k] for k in ("contact", "kinematics", "time")}, "wheel_modes": mprov["config_hash"],
            "rail": rprov["config_hash"], "rail_nt": RAIL_NT, "rail_lags": RAIL_LAGS, "rail_f_max": RAIL_F_MAX,
            "rail_f_taper": RAIL_F_TAPER, "wheel_band_limit": WHEEL_BAND_LIMIT, "wheel_decay_db": WHEEL_DECAY_DB,
            "kropp_taps": KROPP_TAPS, "kropp_fit_tol": KROPP_FIT_TOL}
     return c, pw, pr, modes, (yw, yr), cfg
+
+
+_RAIL_PROV: dict = {}
+
+
+def _rail_provenance(rail: str, pr: dict) -> dict:
+    """The rail artifact's provenance, checked against the rail parameters; remembered per
+    process for the same file (path, size, modification time) and parameters: the check reads
+    the whole 57 MB artifact, and the studies ask for it once per case."""
+    from .config import config_hash
+
+    path = paths.rail_dir(rail) / "rail.npz"
+    st = path.stat() if path.exists() else None
+    key = (str(path), st and st.st_mtime_ns, st and st.st_size, config_hash(pr))
+    if st is None or key not in _RAIL_PROV:
+        _, prov = artifacts.load_npz(path, "rail", pr, make_target=f"rail RAIL={rail}")
+        _RAIL_PROV[key] = prov
+    return _RAIL_PROV[key]
 
 
 def wheel_greens(pw: dict, modes: dict, y_w: float, dt: float) -> dict:
