@@ -410,7 +410,7 @@ def _record_window(F2, F3, done, wbuf, jw, iw, nw, dt, win_stats, min_steps, nee
     return jw, iw, reason
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _advance(filt, rc, n, F2, F3, F_ref, kick, wbuf, jw, iw, nw, dt, win_stats, min_steps, need, rms_tol, f_tol,
              decay_abs):
     """End of step n, shared by both drivers: the structures' response to this step's force

@@ -45,15 +45,17 @@ class PartitionedConvolver(NamedTuple):
     ``partitioned_step`` inside numba.
 
     head (B, 4): g[k] for k < B as (g22, g23, g32, g33), row 0 zero; hbuf (2B, 2) doubled ring
-    of the last B forces; H (P-1, B+1, 4) complex spectra of the partitions; X2, X3 (P-1, B+1)
-    complex delay line of input spectra; seg (2B,) complex last two input blocks (F2 + i F3);
+    of the last B forces; H (P-1, 8, B+1) spectra of the partitions (rows: Re of g22, g23, g32,
+    g33, then their Im); X (P-1, 4, B+1) delay line of input spectra (Re F2, Im F2, Re F3,
+    Im F3); Y (4, B+1) their sum (Re, Im of the xi2 and xi3 spectra): real arrays, so the
+    multiply-adds over the bins vectorise; seg (2B,) complex last two input blocks (F2 + i F3);
     tail (B, 2) the partitions' contribution to the current block's outputs; ctr (3,) int:
     step count, ring position, newest delay-line slot."""
     head: np.ndarray
     hbuf: np.ndarray
     H: np.ndarray
-    X2: np.ndarray
-    X3: np.ndarray
+    X: np.ndarray
+    Y: np.ndarray
     seg: np.ndarray
     tail: np.ndarray
     ctr: np.ndarray
@@ -66,7 +68,7 @@ class PartitionedConvolver(NamedTuple):
         return partitioned_step(self, F2, F3)
 
     def reset(self) -> None:
-        for a in (self.hbuf, self.X2, self.X3, self.seg, self.tail, self.ctr):
+        for a in (self.hbuf, self.X, self.Y, self.seg, self.tail, self.ctr):
             a[...] = 0
 
     def response(self, F: np.ndarray) -> np.ndarray:
@@ -90,23 +92,24 @@ def partitioned_convolver(g: np.ndarray, block: int | None = DEFAULT_BLOCK) -> P
     head = np.zeros((B, 4))
     head[1:] = flat[1:B]
     P = -(-K // B)
-    H = np.zeros((max(P - 1, 0), B + 1, 4), complex)
+    n = max(P - 1, 0)
+    H = np.zeros((n, 8, B + 1))
     for p in range(1, P):
         part = np.zeros((2 * B, 4))
         seg = flat[p * B:(p + 1) * B]
         part[: len(seg)] = seg
-        H[p - 1] = np.fft.rfft(part, axis=0)
-    n = H.shape[0]
-    return PartitionedConvolver(head, np.zeros((2 * B, 2)), H, np.zeros((n, B + 1), complex),
-                                np.zeros((n, B + 1), complex), np.zeros(2 * B, complex), np.zeros((B, 2)),
-                                np.zeros(3, np.int64))
+        S = np.fft.rfft(part, axis=0).T                 # (4, B + 1)
+        H[p - 1, :4] = S.real
+        H[p - 1, 4:] = S.imag
+    return PartitionedConvolver(head, np.zeros((2 * B, 2)), H, np.zeros((n, 4, B + 1)), np.zeros((4, B + 1)),
+                                np.zeros(2 * B, complex), np.zeros((B, 2)), np.zeros(3, np.int64))
 
 
 @numba.njit(cache=True)
 def _next_block(pc):
     """At a block boundary: the new input segment's spectrum into the delay line, then the
     partitions' contribution to the next B outputs (overlap-save)."""
-    head, hbuf, H, X2, X3, seg, tail, ctr = pc
+    head, hbuf, H, X, Y, seg, tail, ctr = pc
     B = head.shape[0]
     n = H.shape[0]
     N = 2 * B
@@ -118,24 +121,23 @@ def _next_block(pc):
     for j in range(B + 1):                           # F2, F3 spectra from the joint FFT
         a = Z[j]
         b = Z[(N - j) % N].conjugate()
-        X2[slot, j] = 0.5 * (a + b)
-        X3[slot, j] = -0.5j * (a - b)
-    Y2 = np.zeros(B + 1, np.complex128)
-    Y3 = np.zeros(B + 1, np.complex128)
+        x2 = 0.5 * (a + b)
+        x3 = -0.5j * (a - b)
+        X[slot, 0, j] = x2.real
+        X[slot, 1, j] = x2.imag
+        X[slot, 2, j] = x3.real
+        X[slot, 3, j] = x3.imag
+    Y[:, :] = 0.0
     for p in range(n):                               # partition p + 1 meets the input p + 1 blocks back
         s = slot + p
         if s >= n:
             s -= n
-        for j in range(B + 1):
-            x2 = X2[s, j]
-            x3 = X3[s, j]
-            Y2[j] += H[p, j, 0] * x2 + H[p, j, 1] * x3
-            Y3[j] += H[p, j, 2] * x2 + H[p, j, 3] * x3
+        _accumulate(H[p], X[s], Y)
     W = np.empty(N, np.complex128)                  # Y2 + i Y3 over the whole circle (Hermitian halves)
     for j in range(B + 1):
-        W[j] = Y2[j] + 1j * Y3[j]
+        W[j] = complex(Y[0, j] - Y[3, j], Y[1, j] + Y[2, j])
     for j in range(1, B):
-        W[N - j] = Y2[j].conjugate() + 1j * Y3[j].conjugate()
+        W[N - j] = complex(Y[0, j] + Y[3, j], Y[2, j] - Y[1, j])
     w = np.fft.ifft(W)
     for r in range(B):
         tail[r, 0] = w[B + r].real
@@ -145,9 +147,23 @@ def _next_block(pc):
 
 
 @numba.njit(cache=True)
+def _accumulate(H, X, Y):
+    """Y += H X per bin: (Y2, Y3) = [[H22, H23], [H32, H33]] (X2, X3), complex, as real arrays."""
+    for j in range(Y.shape[1]):
+        x2r = X[0, j]
+        x2i = X[1, j]
+        x3r = X[2, j]
+        x3i = X[3, j]
+        Y[0, j] += H[0, j] * x2r - H[4, j] * x2i + H[1, j] * x3r - H[5, j] * x3i
+        Y[1, j] += H[0, j] * x2i + H[4, j] * x2r + H[1, j] * x3i + H[5, j] * x3r
+        Y[2, j] += H[2, j] * x2r - H[6, j] * x2i + H[3, j] * x3r - H[7, j] * x3i
+        Y[3, j] += H[2, j] * x2i + H[6, j] * x2r + H[3, j] * x3i + H[7, j] * x3r
+
+
+@numba.njit(cache=True, inline="always")
 def partitioned_step(pc, F2, F3):
     """njit: record (F2, F3) of step n, return (xi2, xi3) at step n + 1 (module notes)."""
-    head, hbuf, H, X2, X3, seg, tail, ctr = pc
+    head, hbuf, H, X, Y, seg, tail, ctr = pc
     B = head.shape[0]
     n = ctr[0]
     p = ctr[1]
@@ -155,15 +171,46 @@ def partitioned_step(pc, F2, F3):
     hbuf[p, 1] = F3
     hbuf[p + B, 0] = F2
     hbuf[p + B, 1] = F3
-    x2 = 0.0
-    x3 = 0.0
+    # head: F[n+1-k] sits at j = p + B - (k - 1); four independent partial sums (lags k mod 4)
+    # so the additions do not wait on each other (the loop is latency-bound otherwise)
+    a2 = 0.0
+    b2 = 0.0
+    c2 = 0.0
+    d2 = 0.0
+    a3 = 0.0
+    b3 = 0.0
+    c3 = 0.0
+    d3 = 0.0
     j = p + B
-    for k in range(1, B):                            # F[n+1-k] sits at j = p + B - (k - 1)
+    k = 1
+    while k + 3 < B:
         f2 = hbuf[j, 0]
         f3 = hbuf[j, 1]
-        x2 += head[k, 0] * f2 + head[k, 1] * f3
-        x3 += head[k, 2] * f2 + head[k, 3] * f3
+        a2 += head[k, 0] * f2 + head[k, 1] * f3
+        a3 += head[k, 2] * f2 + head[k, 3] * f3
+        f2 = hbuf[j - 1, 0]
+        f3 = hbuf[j - 1, 1]
+        b2 += head[k + 1, 0] * f2 + head[k + 1, 1] * f3
+        b3 += head[k + 1, 2] * f2 + head[k + 1, 3] * f3
+        f2 = hbuf[j - 2, 0]
+        f3 = hbuf[j - 2, 1]
+        c2 += head[k + 2, 0] * f2 + head[k + 2, 1] * f3
+        c3 += head[k + 2, 2] * f2 + head[k + 2, 3] * f3
+        f2 = hbuf[j - 3, 0]
+        f3 = hbuf[j - 3, 1]
+        d2 += head[k + 3, 0] * f2 + head[k + 3, 1] * f3
+        d3 += head[k + 3, 2] * f2 + head[k + 3, 3] * f3
+        j -= 4
+        k += 4
+    while k < B:
+        f2 = hbuf[j, 0]
+        f3 = hbuf[j, 1]
+        a2 += head[k, 0] * f2 + head[k, 1] * f3
+        a3 += head[k, 2] * f2 + head[k, 3] * f3
         j -= 1
+        k += 1
+    x2 = (a2 + b2) + (c2 + d2)
+    x3 = (a3 + b3) + (c3 + d3)
     ctr[1] = p + 1 if p + 1 < B else 0
     n1 = n + 1
     ctr[0] = n1
