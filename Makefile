@@ -28,9 +28,9 @@ MODES_SRC    := solvers/axisym.py solvers/classify.py solvers/wheelset.py pipeli
 SHAPES_SRC   := postprocess/mode_shapes.py
 RAIL_SRC     := geometry/rail.py geometry/mesher.py solvers/waveguide.py solvers/rail_response.py pipeline/rail_stage.py
 CONTACT_SRC  := $(wildcard solvers/contact/*.py) pipeline/contact_stage.py geometry/wheel.py geometry/rail.py
-GREENS_SRC   := solvers/green.py solvers/receptance.py solvers/rail_response.py pipeline/greens_stage.py
-SIM_SRC      := solvers/interaction.py pipeline/simulate_stage.py postprocess/spectra.py
-STAB_SRC     := solvers/stability.py solvers/interaction.py solvers/green.py pipeline/stability_stage.py
+GREENS_SRC   := solvers/green.py solvers/receptance.py solvers/rail_response.py solvers/moving_kernel.py pipeline/rail_kernel.py pipeline/greens_stage.py
+SIM_SRC      := solvers/interaction.py solvers/green.py solvers/partitioned.py pipeline/simulate_stage.py postprocess/spectra.py
+STAB_SRC     := solvers/stability.py solvers/interaction.py solvers/green.py solvers/partitioned.py pipeline/stability_stage.py
 RADIATE_SRC  := postprocess/radiation.py postprocess/force_radiation.py postprocess/spectra.py solvers/receptance.py geometry/wheel.py pipeline/radiate_stage.py
 LISTEN_SRC   := postprocess/listener.py postprocess/audio.py postprocess/spectra.py pipeline/listen_stage.py pipeline/listen_plot.py
 
@@ -57,7 +57,7 @@ help: ## list the targets
 $(STAMP): requirements.txt constraints.txt .apt-stamp
 	@test -x $(PY) || /usr/bin/python3 -m venv --system-site-packages .venv
 	$(PY) -m pip install -q --disable-pip-version-check -c constraints.txt -r requirements.txt
-	$(PY) -c "import dolfinx, slepc4py, gmsh, numba, pyvista, numpy, dask, distributed; assert numpy.__version__.startswith('1.24'), numpy.__version__"
+	$(PY) -c "import dolfinx, slepc4py, gmsh, numba, rocket_fft, pyvista, numpy, dask, distributed; assert numpy.__version__.startswith('1.24'), numpy.__version__"
 	@touch $@
 
 setup: $(STAMP) ## install Debian packages and the Python venv (stamp files; reruns only when the lists change)

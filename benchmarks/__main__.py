@@ -15,7 +15,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 OUT = ROOT / "docs" / "benchmarks.md"
-SUITES = ["wheel", "contact", "rail", "greens", "interaction", "radiation", "stability", "study"]
+SUITES = ["wheel", "contact", "rail", "greens", "fast_rail", "interaction", "radiation", "stability", "study"]
 
 
 def machine() -> str:

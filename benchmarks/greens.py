@@ -103,7 +103,8 @@ def run() -> str:
 
 The wheel's seconds-long kernel is never convolved directly in the time loop: the recursive modal filters are
 exact (1e-13 relative to direct convolution, docs/validation/50_greens.md) and cost O(modes) per step. The rail's
-moving kernel (a few thousand lags) is convolved directly per step with the ring buffer.
+moving kernel (a few thousand lags) is convolved per step by the partitioned FFT convolution (section "Rail fast
+paths"); the ring buffer above is its direct reference.
 """
 
 

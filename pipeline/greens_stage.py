@@ -10,7 +10,9 @@ rail waves into the causal kernels the time loop uses, for one case.
   but its exact fast form, the recursive modal filters (f_r, modal mass, zeta,
   the shapes at the contact point): the correction changes nothing there.
 * Rail: the moving Green's function g_mov[k] = g^R(v k dt, k dt) at the case's
-  rail-head point, from the waveguide wave table on Kropp's grid.  The rail
+  rail-head point, from the waveguide wave table on Kropp's grid, shared by every case with
+  the same rail, |y^R|, speed and time step through the cache build/rails/<rail>/moving/
+  (pipeline/rail_kernel.py; built in seconds by solvers/moving_kernel.py).  The rail
   model is valid to 6.5 kHz; above, the receptance is rolled off to zero by
   9 kHz with a smooth (C-infinity) taper.  A hard cut at 6.5 kHz (the
   former choice) is a jump of Re G of a few 1e-10 m/N whose Hilbert transform puts
@@ -58,13 +60,31 @@ def greens_inputs(case: str):
     pr, _ = load_rail_params(c["rail"])
     modes, mprov = artifacts.load_npz(paths.wheel_dir(c["wheel"]) / "modes.npz", "wheel-modes", pw,
                                       make_target=f"modes WHEEL={c['wheel']}")
-    _, rprov = artifacts.load_npz(paths.rail_dir(c["rail"]) / "rail.npz", "rail", pr, make_target=f"rail RAIL={c['rail']}")
+    rprov = _rail_provenance(c["rail"], pr)
     yw, yr = NOMINAL_POSITIONS[round(c["contact"]["dy_wr"], 3)]
     cfg = {"case": {k: c[k] for k in ("contact", "kinematics", "time")}, "wheel_modes": mprov["config_hash"],
            "rail": rprov["config_hash"], "rail_nt": RAIL_NT, "rail_lags": RAIL_LAGS, "rail_f_max": RAIL_F_MAX,
            "rail_f_taper": RAIL_F_TAPER, "wheel_band_limit": WHEEL_BAND_LIMIT, "wheel_decay_db": WHEEL_DECAY_DB,
            "kropp_taps": KROPP_TAPS, "kropp_fit_tol": KROPP_FIT_TOL}
     return c, pw, pr, modes, (yw, yr), cfg
+
+
+_RAIL_PROV: dict = {}
+
+
+def _rail_provenance(rail: str, pr: dict) -> dict:
+    """The rail artifact's provenance, checked against the rail parameters; remembered per
+    process for the same file (path, size, modification time) and parameters: the check reads
+    the whole 57 MB artifact, and the studies ask for it once per case."""
+    from .config import config_hash
+
+    path = paths.rail_dir(rail) / "rail.npz"
+    st = path.stat() if path.exists() else None
+    key = (str(path), st and st.st_mtime_ns, st and st.st_size, config_hash(pr))
+    if st is None or key not in _RAIL_PROV:
+        _, prov = artifacts.load_npz(path, "rail", pr, make_target=f"rail RAIL={rail}")
+        _RAIL_PROV[key] = prov
+    return _RAIL_PROV[key]
 
 
 def wheel_greens(pw: dict, modes: dict, y_w: float, dt: float) -> dict:
@@ -95,32 +115,14 @@ def wheel_greens(pw: dict, modes: dict, y_w: float, dt: float) -> dict:
             "wheel_correction": fit.correction}
 
 
-def rail_greens(pr: dict, y_r: float, v: float, dt: float) -> dict:
-    from solvers.green import decayed, frequency_grid, green_from_receptance, moving_green
-    from solvers.rail_response import build_rail_model, evaluate_table, wave_table
+def rail_greens(pr: dict, rail_hash: str, y_r: float, v: float, dt: float) -> tuple[dict, bool]:
+    """The moving rail kernel and its companions at y_r, from the shared cache
+    build/rails/<rail>/moving/ or built there (pipeline/rail_kernel.py); also whether it came
+    from the cache.  rail_hash: the rail artifact's configuration hash."""
+    from .rail_kernel import rail_kernel
 
-    msh = paths.rail_dir(pr["name"]) / "section.msh"
-    model = build_rail_model(pr, str(msh), contact_y=[y_r], with_centre=False)
-    f = frequency_grid(dt, RAIL_NT)
-    inside = f < RAIL_F_TAPER
-    fin = np.maximum(f[inside], 1.0)  # the static limit: the 1 Hz response
-    T = wave_table(model, fin, points=[y_r])
-    w = rail_taper(f[inside])
-
-    def transfer(x, ff):
-        G = np.zeros((len(x), len(ff), 2, 2), complex)
-        G[:, inside] = evaluate_table(T, x)[0] * w[None, :, None, None]
-        return G
-
-    g = moving_green(transfer, v, dt, RAIL_LAGS, RAIL_NT)
-    g0 = green_from_receptance(transfer(np.zeros(1), f)[0], dt, RAIL_NT)  # fixed point: decay check
-    check = decayed(g0)
-    if not check.ok:
-        raise RuntimeError(f"rail Green's function has not decayed by N_t/2 dt ({check.level_db:.0f} dB)")
-    tail = np.abs(g[-RAIL_LAGS // 8:]).max() / np.abs(g).max()
-    return {"rail_kernel": g, "rail_fixed_kernel": g0[:RAIL_LAGS], "rail_decay_db": np.float64(check.level_db),
-            "rail_tail_ratio": np.float64(tail), "rail_nt": np.int64(RAIL_NT),
-            "rail_point_receptance": evaluate_table(T, np.zeros(1))[0, 0]}  # G(0, f_k) untapered, f_k < RAIL_F_TAPER
+    grid = {"n_t": RAIL_NT, "n_lags": RAIL_LAGS, "f_max": RAIL_F_MAX, "f_taper": RAIL_F_TAPER}
+    return rail_kernel(pr, rail_hash, y_r, v, dt, grid, rail_taper)
 
 
 def rail_taper(f) -> np.ndarray:
@@ -144,15 +146,17 @@ def run_greens(case: str) -> dict:
     arrays = {"dt": np.float64(dt), "v": np.float64(v), "y_wheel": np.float64(yw), "y_rail": np.float64(yr)}
     arrays.update(wheel_greens(pw, modes, yw, dt))
     t1 = time.perf_counter()
-    arrays.update(rail_greens(pr, yr, v, dt))
+    rail, cached = rail_greens(pr, cfg["rail"], yr, v, dt)
+    arrays.update(rail)
     t2 = time.perf_counter()
     out = paths.case_dir(case)
     plot_kernels(arrays, out / "greens.png", case)
     artifacts.save_npz(out / "greens.npz", "greens", cfg, **arrays)
     log.info("greens %s: wheel %d modes, Kropp N_t = %d (decayed %.0f dB, DFT = G to %.1e up to %.1f kHz) in %.1f s; "
-             "rail moving kernel %d lags (tail %.1e of peak) in %.1f s -> %s", case, len(arrays["wheel_f"]),
+             "rail moving kernel %d lags (tail %.1e of peak, %s) in %.1f s -> %s", case, len(arrays["wheel_f"]),
              arrays["wheel_nt"], arrays["wheel_decay_db"], arrays["wheel_fit_error"].max(),
-             arrays["wheel_band_limit"] / 1e3, t1 - t0, RAIL_LAGS, arrays["rail_tail_ratio"], t2 - t1, out / "greens.npz")
+             arrays["wheel_band_limit"] / 1e3, t1 - t0, RAIL_LAGS, arrays["rail_tail_ratio"],
+             "shared cache" if cached else "built and cached", t2 - t1, out / "greens.npz")
     return arrays
 
 

@@ -388,7 +388,11 @@ class ModalFilter(NamedTuple):
     """Exact recursive form of the wheel's modal kernel (see the module notes).
     Coefficients (per mode r): kind 0 (zeta < 1, complex one-pole) or 1 (zeta >= 1,
     real poles); z = pole / first pole, p2 = second pole; w_in (M, 2): modal force
-    P_r = w_in[r] . (F2, F3); w_out (M, 2): xi_i += w_out[r, i] * y_r.  State: q, a.
+    P_r = w_in[r] . (F2, F3); w_out (M, 2): xi_i += w_out[r, i] * y_r.  State: q, a (kind 1).
+    The time loop runs the kind-0 modes from real, mode-contiguous copies (a loop without
+    branches or complex types, which the compiler vectorises): u_coef (6, M0) = Re z, Im z,
+    w_in[:, 0], w_in[:, 1], w_out[:, 0], w_out[:, 1]; their state u_state (2, M0) = Re q, Im q;
+    ``over`` (M1,) the indices of the kind-1 modes.
     Pass the whole tuple to the njit functions (``filter_step``,
     ``filter_history``) from inside a numba time loop."""
     kind: np.ndarray
@@ -398,6 +402,9 @@ class ModalFilter(NamedTuple):
     w_out: np.ndarray
     q: np.ndarray
     a: np.ndarray
+    u_coef: np.ndarray
+    u_state: np.ndarray
+    over: np.ndarray
 
     def step(self, F2: float, F3: float) -> tuple[float, float]:
         """Record the force at the current step; return (xi2, xi3) at the next step."""
@@ -406,6 +413,7 @@ class ModalFilter(NamedTuple):
     def reset(self) -> None:
         self.q[:] = 0.0
         self.a[:] = 0.0
+        self.u_state[:] = 0.0
 
     def copy(self) -> "ModalFilter":
         return ModalFilter(*(np.array(x, copy=True) for x in self))
@@ -451,27 +459,35 @@ def modal_filter(dt: float, f_r, modal_mass, zeta, phi) -> ModalFilter:
             gain[r] = dt * dt * math.exp(-sig * dt) * shc
     w_in = np.ascontiguousarray(phi)
     w_out = np.ascontiguousarray(phi * (gain / modal_mass)[:, None])
-    return ModalFilter(kind, z, p2, w_in, w_out, np.zeros(M, complex), np.zeros(M, complex))
+    under = kind == 0
+    u_coef = np.ascontiguousarray(np.vstack([z.real, z.imag, w_in.T, w_out.T])[:, under])
+    return ModalFilter(kind, z, p2, w_in, w_out, np.zeros(M, complex), np.zeros(M, complex), u_coef,
+                       np.zeros((2, int(under.sum()))), np.flatnonzero(~under).astype(np.int64))
 
 
 @numba.njit(cache=True)
 def filter_step(filt, F2, F3):
     """njit: push the force (F2, F3) of step n into the modal filters, return the
     displacement (xi2, xi3) at step n + 1 (forces up to step n only, g[0] excluded)."""
-    kind, z, p2, w_in, w_out, q, a = filt
+    kind, z, p2, w_in, w_out, q, a, uc, us, over = filt
     x2 = 0.0
     x3 = 0.0
-    for r in range(kind.shape[0]):
+    for j in range(uc.shape[1]):                    # zeta < 1: q <- z (q + P), y = Im q
+        ur = us[0, j] + uc[2, j] * F2 + uc[3, j] * F3
+        ui = us[1, j]
+        nr = uc[0, j] * ur - uc[1, j] * ui
+        ni = uc[0, j] * ui + uc[1, j] * ur
+        us[0, j] = nr
+        us[1, j] = ni
+        x2 += uc[4, j] * ni
+        x3 += uc[5, j] * ni
+    for i in range(over.shape[0]):                  # zeta >= 1: divided-difference states
+        r = over[i]
         P = w_in[r, 0] * F2 + w_in[r, 1] * F3
-        if kind[r] == 0:
-            qn = z[r] * (q[r] + P)
-            q[r] = qn
-            y = qn.imag
-        else:
-            v = P + z[r] * q[r] + a[r]
-            a[r] = p2[r] * (a[r] + P)
-            q[r] = v
-            y = v.real
+        v = P + z[r] * q[r] + a[r]
+        a[r] = p2[r] * (a[r] + P)
+        q[r] = v
+        y = v.real
         x2 += w_out[r, 0] * y
         x3 += w_out[r, 1] * y
     return x2, x3

@@ -17,7 +17,7 @@ Kernel layout [..., i, j], index 0 = direction 2, 1 = direction 3 (as in
 (static) state and are convolved with the force DEVIATIONS dF = F - F_ref:
 
     wheel  xi^W[n] = - sum_{k>=1} g^W[k] dF[n-k]      [4.13]  (recursive modal filters)
-    rail   xi^R[n] = + sum_{k>=1} g^R_mov[k] dF[n-k]  [4.15]  (ring-buffer convolution)
+    rail   xi^R[n] = + sum_{k>=1} g^R_mov[k] dF[n-k]  [4.15]  (partitioned FFT convolution, exact)
     xi[n]  = xi^R[n] - xi^W[n]   (displacement of the rail relative to the wheel)
 
 Normal kinematics [4.16], [4.19]: d = xi3 + z^R - z^W + u3 with xi3 = xi3^R - xi3^W
@@ -119,7 +119,7 @@ Drivers
 -------
 ``simulate(...)`` runs
 * normal='table', tangential='point': the whole time loop inside numba
-  (``_run_point``), O(modes + rail lags) per step (benchmarks/interaction.py);
+  (``_run_point``), O(modes + B + K / B) per step for a rail kernel of K lags and head B (benchmarks/interaction.py);
 * normal='norm', compliance='exact' and/or tangential='kalker' (or
   driver='python'): the reference drivers, a Python loop over the steps with
   the same kinematics and the same njit building blocks: per-step NORM
@@ -151,7 +151,8 @@ import numpy as np
 from .contact.compliance import table_compliance
 from .contact.friction import mu_and_slope, mu_rf
 from .contact.norm import table_force
-from .green import ModalFilter, filter_step, modal_filter, ring_convolver, ring_step
+from .green import ModalFilter, filter_step, modal_filter
+from .partitioned import DEFAULT_BLOCK, partitioned_convolver, partitioned_step
 
 MAX_DURATION = 8.0          # s, SPEC 6
 EPS_SLIP = 1e-9             # m/s, regularisation of the slip direction (curves with mu(0) > 0)
@@ -409,7 +410,7 @@ def _record_window(F2, F3, done, wbuf, jw, iw, nw, dt, win_stats, min_steps, nee
     return jw, iw, reason
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _advance(filt, rc, n, F2, F3, F_ref, kick, wbuf, jw, iw, nw, dt, win_stats, min_steps, need, rms_tol, f_tol,
              decay_abs):
     """End of step n, shared by both drivers: the structures' response to this step's force
@@ -422,7 +423,7 @@ def _advance(filt, rc, n, F2, F3, F_ref, kick, wbuf, jw, iw, nw, dt, win_stats, 
         d2 += kick[0]
         d3 += kick[1]
     w2, w3 = filter_step(filt, d2, d3)
-    r2, r3 = ring_step(rc, d2, d3)
+    r2, r3 = partitioned_step(rc, d2, d3)
     reason = 0
     if nw > 0:
         jw, iw, reason = _record_window(F2, F3, n + 1, wbuf, jw, iw, nw, dt, win_stats, min_steps, need, rms_tol,
@@ -577,17 +578,17 @@ def squeal_measures(F2, dt: float, f_min: float = 20.0) -> dict:
 
 def _wheel_filter(wheel: WheelModes | None, dt: float) -> ModalFilter:
     if wheel is None or len(np.atleast_1d(wheel.f_r)) == 0:
-        e = np.zeros(0)
-        return ModalFilter(np.zeros(0, np.int64), e.astype(complex), e.astype(complex), np.zeros((0, 2)),
-                           np.zeros((0, 2)), e.astype(complex), e.astype(complex))
+        return modal_filter(dt, np.zeros(0), np.zeros(0), np.zeros(0), np.zeros((0, 2)))
     return modal_filter(dt, wheel.f_r, wheel.modal_mass, wheel.zeta, wheel.phi)
 
 
-def _rail_ring(rail_kernel: np.ndarray | None):
+def _rail_ring(rail_kernel: np.ndarray | None, block: int | None = DEFAULT_BLOCK):
+    """The rail's convolver (solvers.partitioned): exact partitioned FFT convolution with a direct
+    head of ``block`` lags, or the plain direct sum with block=None (the reference)."""
     g = np.zeros((1, 2, 2)) if rail_kernel is None else np.asarray(rail_kernel, float)
     if g.ndim != 3 or g.shape[1:] != (2, 2):
         raise ValueError(f"rail kernel must have shape (n_k, 2, 2), got {g.shape}")
-    return ring_convolver(g)
+    return partitioned_convolver(g, block)
 
 
 def static_approach(contact: ContactModel, preload: float) -> float:
@@ -630,7 +631,8 @@ def simulate(wheel: WheelModes | None, rail_kernel: np.ndarray | None, contact: 
              tangential: str = "point", normal: str = "table", compliance: str = "table",
              start: str = "steady", kick=None, slip_sign: float = 1.0,
              final: float = 0.5, store_every: int = 1, stop: StopRule | None = StopRule(),
-             xi3_static: float | None = None, eps: float | None = None, driver: str = "auto") -> InteractionResult:
+             xi3_static: float | None = None, eps: float | None = None, driver: str = "auto",
+             rail_block: int | None = DEFAULT_BLOCK) -> InteractionResult:
     """Run the wheel/rail interaction (module notes).
 
     wheel: WheelModes (None: rigid fixed wheel); rail_kernel: the rail's moving Green's function
@@ -647,7 +649,8 @@ def simulate(wheel: WheelModes | None, rail_kernel: np.ndarray | None, contact: 
     xi3_static: static approach (default: the table's approach at the preload); eps: slip
     direction regularisation (default 0 for a curve with mu_RF(0) = 0, else EPS_SLIP); driver: 'auto'
     (numba for table + point + table compliance, else the Python reference loop) or 'python'
-    (force the reference loop, for testing)."""
+    (force the reference loop, for testing); rail_block: head length of the rail's partitioned
+    FFT convolution (exact, ``solvers.partitioned``), None for the direct sum."""
     if duration > MAX_DURATION + 1e-12:
         raise ValueError(f"duration {duration} s exceeds the SPEC's maximum of {MAX_DURATION} s")
     if tangential not in ("point", "kalker") or normal not in ("table", "norm") or \
@@ -688,7 +691,7 @@ def simulate(wheel: WheelModes | None, rail_kernel: np.ndarray | None, contact: 
     wbuf = np.zeros((max(nw, 1), 2))
     counters = np.zeros(4, np.int64)
     filt = _wheel_filter(wheel, dt)
-    rc = _rail_ring(rail_kernel)
+    rc = _rail_ring(rail_kernel, rail_block)
     settings = dict(dt=dt, v=v, preload=preload, duration=duration, tangential=tangential, normal=normal,
                     compliance=compliance, start=start, kick=kick.tolist(), slip_sign=slip_sign, final=final,
                     store_every=store_every, eps=eps)
