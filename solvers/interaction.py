@@ -770,7 +770,8 @@ def _run_reference(filt, rc, n_steps, dt, v, gx, gy, xi3_static, F_ref, u_ref, k
         if start == "steady":
             p0 = table_pressure(table, xi3_static) if normal == "table" else norm(c.gap, xi3_static, c.dx, c.dy,
                                                                                  E, nu).p
-            tang_state = tang_steady(p0, c.dx, c.dy, v, c.mu, gamma_x=gx[0], gamma_y=gy[0], E=E, nu=nu)
+            tang_state = tang_steady(p0, c.dx, c.dy, v, c.mu, gamma_x=gx[0], gamma_y=gy[0], E=E, nu=nu,
+                                     full_output=False)
             F_ref = np.array([tang_state.F1, tang_state.F2, F_ref[2]])
     xi2 = xi3 = xi2_old = 0.0
     u1p, u2p = float(u_ref[0]), float(u_ref[1])
@@ -812,7 +813,7 @@ def _run_reference(filt, rc, n_steps, dt, v, gx, gy, xi3_static, F_ref, u_ref, k
                 if p3 is None:
                     p3 = table_pressure(table, app)
                 tang_state = tang_transient(p3, c.dx, c.dy, v, c.mu, gamma_x=gxn, gamma_y=gyn + dxi2 / v,
-                                            E=E, nu=nu, state=tang_state)
+                                            E=E, nu=nu, state=tang_state, full_output=False)
                 F1, F2 = tang_state.F1, tang_state.F2
                 inside = p3 > 0
                 s1 = float(tang_state.s1[inside].mean())

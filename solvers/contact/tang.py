@@ -89,8 +89,30 @@ class TangentialContact(NamedTuple):
     converged: bool
     krylov: int = 0         # Krylov (CG / GMRES) steps in total
     u_ahead: np.ndarray | None = None    # (2, nx, ny): u(x + dx, t), the next step's transport term
-    dp: np.ndarray | None = None         # (2, nx, ny): traction change over the last time step (transient)
-    du: np.ndarray | None = None         # (2, nx, ny): displacement change over the last time step
+    history: "_History | None" = None    # transient: the last steps' changes (the next step's predictor)
+    window: tuple | None = None          # (i0, i1, j0, j1): rows/columns where u1, u2, u_ahead are valid
+
+
+class _History(NamedTuple):
+    """Differences of the last transient steps on the grid (2, nx, ny): first dp = p_k - p_k-1 and
+    second d2p = dp_k - dp_k-1 (likewise du, d2u of the displacements), and the order (0, 1, 2) of
+    the polynomial extrapolation that would have predicted the last step best."""
+    dp: np.ndarray
+    du: np.ndarray
+    d2p: np.ndarray | None
+    d2u: np.ndarray | None
+    order: int
+    window: tuple           # the working window of the step (the differences are valid there)
+
+
+def _next_history(prev: _History | None, window, dp, du) -> _History:
+    if prev is None or prev.dp.shape != dp.shape or prev.window != window:
+        return _History(dp, du, None, None, 1, window)
+    d2p, d2u = dp - prev.dp, du - prev.du
+    errors = [np.abs(dp).max(), np.abs(d2p).max()]          # constant, linear predictor
+    if prev.d2p is not None:
+        errors.append(np.abs(d2p - prev.d2p).max())          # quadratic
+    return _History(dp, du, d2p, d2u, int(np.argmin(errors)), window)
 
 
 # ----------------------------------------------------------------------------------------------
@@ -145,8 +167,9 @@ class TangentialOperator:
         return self._fft.convolve(P)
 
     def precondition(self, R, inv_a, inv_b=None):
-        """Strang-circulant inverse symbols applied to R (2 or 4, nx, ny): fields 0, 1 with inv_a,
-        2, 3 with inv_b (scaled units; a buffer view is returned)."""
+        """Strang-circulant inverse symbols applied to R (4, nx, ny): fields 0, 1 with inv_a,
+        2, 3 with inv_b, a pair skipped when its symbol is None (scaled units; a buffer view of
+        4 fields is returned)."""
         if self._fft is None:
             self._fft = _FFTBuffers(self)
         return self._fft.precondition(R, inv_a, inv_b)
@@ -209,22 +232,26 @@ class _FFTBuffers:
         return self.rout[:, :, :ny]
 
     def precondition(self, R, inv_a, inv_b):
+        """Fields 0, 1 of R (4, nx, ny) with the symbol inv_a, 2, 3 with inv_b; a pair whose
+        symbol is None is skipped (left as it is in the output)."""
         nx, ny = self.nx, self.ny
-        m = R.shape[0]
-        tin, tspec, tout = self.tin[:m], self.tspec[:m], self.tout[:m]
-        tin[:, :nx, :ny] = R
+        lo = 0 if inv_a is not None else 2
+        hi = 4 if inv_b is not None else 2
+        tin, tspec, tout = self.tin[lo:hi], self.tspec[lo:hi], self.tout[lo:hi]
+        tin[:, :nx, :ny] = R[lo:hi]
         if _pocketfft is None:   # pragma: no cover
             tspec[:] = sfft.rfft2(tin, workers=1)
         else:
             _pocketfft.r2c(tin, (1, 2), True, 0, tspec, 1)
-        _kernel_product(tspec[:2], inv_a)
-        if m == 4:
-            _kernel_product(tspec[2:], inv_b)
+        if inv_a is not None:
+            _kernel_product(tspec[:2], inv_a)
+        if inv_b is not None:
+            _kernel_product(tspec[hi - 2:], inv_b)
         if _pocketfft is None:   # pragma: no cover
             tout[:] = sfft.irfft2(tspec, s=tin.shape[1:], workers=1)
         else:
             _pocketfft.c2r(tspec, (1, 2), self.Ty, False, 2, tout, 1)
-        return tout[:, :nx, :ny]
+        return self.tout[:, :nx, :ny]
 
 
 @numba.njit(cache=True)
@@ -237,7 +264,7 @@ def _kernel_product(F, h):
             F[1, i, j] = h[1, i, j] * a + h[2, i, j] * b
 
 
-@functools.lru_cache(maxsize=16)
+@functools.lru_cache(maxsize=64)
 def tangential_operator(shape, dx, dy, E=210e9, nu=0.3) -> TangentialOperator:
     """The FFT influence operator of a grid (cached per grid and material)."""
     return TangentialOperator(tuple(int(n) for n in shape), float(dx), float(dy), float(E), float(nu))
@@ -620,10 +647,15 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
     s = np.zeros((N, 2))
     R = np.zeros((N, 2))
     # start: slip elements on their circle, stick elements inside their bound
+    p_given = p.copy() if u_start is not None else None
     _slip_geometry(stick, theta, g, s, p, t, D, scale)
     over = stick & (np.hypot(p[:, 0], p[:, 1]) > g)
     if over.any():
         p[over] *= (g[over] / np.hypot(p[over, 0], p[over, 1]))[:, None]
+    if p_given is not None:       # the predicted displacements hold for the start only if it was kept
+        level = max(float(np.abs(p).max(initial=0.0)), 1e-300)
+        if float(np.abs(p - p_given).max(initial=0.0)) > 1e-3 * math.sqrt(tol / QUADRATIC) * level:
+            u_start = None
 
     def slip_of(pp):
         _scatter(ix, iy, pp, grid)
@@ -641,14 +673,15 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
     grid4 = np.zeros((4,) + op.shape)
     sc = np.ones(N)
     inv_slip = [None]
+    inv_stick = [op.inv]
     slip_fft = not steady
 
     def Pinv(x):
-        m = 4 if (slip_fft and inv_slip[0] is not None) else 2
-        _precondition_in(ix, iy, stick, t, sc, x, steady, m == 4, grid4[:m])
-        z = op.precondition(grid4[:m], op.inv, inv_slip[0])
+        four = slip_fft and inv_slip[0] is not None
+        _precondition_in(ix, iy, stick, t, sc, x, steady, four, grid4)
+        z = op.precondition(grid4, inv_stick[0], inv_slip[0] if four else None)
         y = np.empty_like(x)
-        _precondition_out(ix, iy, stick, t, sc, D, mdiag_s, z, m == 4, x, y)
+        _precondition_out(ix, iy, stick, t, sc, D, mdiag_s, z, four, x, y)
         return y
 
     q_vec, z_vec, d_vec = np.zeros((N, 2)), np.zeros((N, 2)), np.zeros((N, 2))
@@ -661,17 +694,16 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
         if bn2 == 0.0:
             return x, 0
         four = inv_slip[0] is not None
-        m = 4 if four else 2
-        _precondition_in(ix, iy, stick, t, sc, rv, False, four, grid4[:m])
-        Z = op.precondition(grid4[:m], op.inv, inv_slip[0])
+        _precondition_in(ix, iy, stick, t, sc, rv, False, four, grid4)
+        Z = op.precondition(grid4, inv_stick[0], inv_slip[0])
         rz = _pcg_direction(ix, iy, stick, t, sc, D, mdiag_s, Z, four, rv, z_vec, 0.0, d_vec, grid)
         for k in range(1, kmax + 1):
             U = op.displacements(grid)
             rr, dq = _pcg_update(ix, iy, stick, t, D, U, False, scale, d_vec, q_vec, rz, x, rv, sc, four,
-                                 grid4[:m])
+                                 grid4)
             if dq <= 0.0 or rr <= rtol * rtol * bn2:
                 return x, k
-            Z = op.precondition(grid4[:m], op.inv, inv_slip[0])
+            Z = op.precondition(grid4, inv_stick[0], inv_slip[0])
             rz = _pcg_direction(ix, iy, stick, t, sc, D, mdiag_s, Z, four, rv, z_vec, rz, d_vec, grid)
         return x, kmax
 
@@ -692,6 +724,7 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
     for newton in range(1, max_iter + 1):
         _slip_geometry(stick, theta, g, s, p, t, D, scale)
         r_max = _residual(stick, t, s, R)
+        inv_stick[0] = op.inv if stick.any() else None
         if slip_fft:
             if stick.all():
                 inv_slip[0] = None
@@ -747,33 +780,73 @@ def rigid_slip(shape, dx, dy, v, gamma_x=0.0, gamma_y=0.0, spin=0.0, origin=(0.0
     return w1, w2
 
 
-def _solve(p3, dx, dy, v, mu, w1, w2, r_extra, steady, E, nu, warm, tol, extrapolate=False):
+PAD = 1                     # elements around the contact's bounding box in the working window
+
+
+def _window(contact, pad=PAD):
+    """Bounding box of the contact elements grown by `pad`, clipped to the grid: (i0, i1, j0, j1)
+    inclusive, or None without contact."""
+    rows = np.flatnonzero(contact.any(axis=1))
+    if rows.size == 0:
+        return None
+    cols = np.flatnonzero(contact.any(axis=0))
+    nx, ny = contact.shape
+    return (max(int(rows[0]) - pad, 0), min(int(rows[-1]) + pad, nx - 1),
+            max(int(cols[0]) - pad, 0), min(int(cols[-1]) + pad, ny - 1))
+
+
+def _inside(w, v):
+    """Window w inside window v."""
+    return v is not None and w[0] >= v[0] and w[1] <= v[1] and w[2] >= v[2] and w[3] <= v[3]
+
+
+def _solve(p3, dx, dy, v, mu, gamma_x, gamma_y, spin, w_offset, steady, E, nu, warm, tol, full_output):
+    """Common driver of tang_steady / tang_transient: the problem on the contact's window."""
     p3 = np.asarray(p3, dtype=float)
     shape = p3.shape
+    nx, ny = shape
     contact = p3 > 0.0
     dt = dx / v
-    op = tangential_operator(shape, dx, dy, E, nu)
     ix, iy = np.nonzero(contact)
-    g = mu * p3[ix, iy]
-    r = np.column_stack([w1[ix, iy], w2[ix, iy]]) * dt + r_extra + np.zeros((len(ix), 2))
-    u_start = None
-    if warm is not None:
-        p0 = np.column_stack([warm.p1[ix, iy], warm.p2[ix, iy]])
-        if extrapolate and warm.dp is not None and warm.dp.shape[1:] == shape:
-            p0 += np.column_stack([warm.dp[0][ix, iy], warm.dp[1][ix, iy]])    # linear predictor
-            if warm.du is not None:
-                u_start = np.stack([warm.u1, warm.u2]) + warm.du                # its displacements
-        stick0 = ~warm.slip[ix, iy]
-    else:
-        p0, stick0 = np.zeros((len(ix), 2)), np.ones(len(ix), bool)
+    N = ix.size
+    win = _window(contact)
     P1, P2, S1, S2 = (np.zeros(shape) for _ in range(4))
     st = np.zeros(shape, bool)
-    if len(ix) == 0 or mu <= 0.0:        # no contact or no friction: traction-free, all slip
+    # rigid slip at the contact elements, times dt (rigid_slip's formula at x_I + w_offset dx)
+    xc = (ix - 0.5 * (nx - 1) + w_offset) * dx
+    yc = (iy - 0.5 * (ny - 1)) * dy
+    r = np.empty((N, 2))
+    r[:, 0] = (gamma_x - spin * yc) * v * dt
+    r[:, 1] = (gamma_y + spin * xc) * v * dt
+    transient_prev = (not steady) and warm is not None and warm.p1.shape == shape
+    if transient_prev:                         # transport term: -u(x + dx, t - dt)
+        ahead = warm.u_ahead
+        if ahead is None or not _inside(win, warm.window):
+            full = tangential_operator(shape, dx, dy, E, nu)
+            ahead = full.displacements(np.stack([warm.p1, warm.p2]))[:, 1:]
+        r[:, 0] -= ahead[0][ix, iy]
+        r[:, 1] -= ahead[1][ix, iy]
+    if N == 0 or mu <= 0.0:                    # no contact or no friction: traction-free, all slip
         S1[ix, iy], S2[ix, iy] = r[:, 0] / dt, r[:, 1] / dt
         zero = np.zeros(shape)
         return TangentialContact(P1, P2, st, contact.copy(), S1, S2, zero, zero.copy(), 0.0, 0.0, 0, True, 0,
-                                 np.zeros((2,) + shape))
-    res = solve_coulomb(op, ix, iy, r, g, p0, stick0, steady=steady, tol=tol, warm=warm is not None,
+                                 np.zeros((2,) + shape), None, (0, nx - 1, 0, ny - 1))
+    i0, i1, j0, j1 = win
+    op = tangential_operator((i1 - i0 + 1, j1 - j0 + 1), dx, dy, E, nu)
+    g = mu * p3[ix, iy]
+    u_start = None
+    if warm is not None and warm.p1.shape == shape:
+        p0 = np.column_stack([warm.p1[ix, iy], warm.p2[ix, iy]])
+        stick0 = ~warm.slip[ix, iy]
+        h = warm.history
+        if transient_prev and h is not None and h.order > 0 and h.window == win and _inside(win, warm.window):
+            dp, du = (h.dp, h.du) if h.order == 1 else (h.dp + h.d2p, h.du + h.d2u)    # predictor
+            p0 += np.column_stack([dp[0][ix, iy], dp[1][ix, iy]])
+            u_start = np.stack([warm.u1[i0:i1 + 1, j0:j1 + 1], warm.u2[i0:i1 + 1, j0:j1 + 1]]) \
+                + du[:, i0:i1 + 1, j0:j1 + 1]
+    else:
+        p0, stick0 = np.zeros((N, 2)), np.ones(N, bool)
+    res = solve_coulomb(op, ix - i0, iy - j0, r, g, p0, stick0, steady=steady, tol=tol, warm=warm is not None,
                         u_start=u_start)
     if not res.converged:
         warnings.warn("TANG: stick/slip sets not converged", RuntimeWarning)
@@ -781,42 +854,47 @@ def _solve(p3, dx, dy, v, mu, w1, w2, r_extra, steady, E, nu, warm, tol, extrapo
     P1[ix, iy], P2[ix, iy] = p[:, 0], p[:, 1]
     S1[ix, iy], S2[ix, iy] = s[:, 0] / dt, s[:, 1] / dt
     st[ix, iy] = res.stick
-    nx = shape[0]
-    u = res.u
+    if full_output and win != (0, nx - 1, 0, ny - 1):
+        u = tangential_operator(shape, dx, dy, E, nu).displacements(np.stack([P1, P2]))
+        valid = (0, nx - 1, 0, ny - 1)
+        U = u[:, :nx].copy()
+        ahead = np.ascontiguousarray(u[:, 1:])
+    else:
+        valid = win
+        U = np.zeros((2, nx, ny))
+        ahead = np.zeros((2, nx, ny))
+        U[:, i0:i1 + 1, j0:j1 + 1] = res.u[:, : i1 - i0 + 1]
+        ahead[:, i0:i1 + 1, j0:j1 + 1] = res.u[:, 1:]
+    history = None
+    if transient_prev:
+        history = _next_history(warm.history, win, np.stack([P1 - warm.p1, P2 - warm.p2]),
+                                U - np.stack([warm.u1, warm.u2]))
     dA = dx * dy
-    dp = du = None
-    if not steady and warm is not None and warm.p1.shape == shape:
-        dp = np.stack([P1 - warm.p1, P2 - warm.p2])
-        du = np.stack([u[0, :nx] - warm.u1, u[1, :nx] - warm.u2])
-    return TangentialContact(P1, P2, st, contact & ~st, S1, S2, u[0, :nx].copy(), u[1, :nx].copy(),
-                             float(P1.sum() * dA), float(P2.sum() * dA), res.newton, res.converged, res.krylov,
-                             np.ascontiguousarray(u[:, 1:nx + 1]), dp, du)
+    return TangentialContact(P1, P2, st, contact & ~st, S1, S2, U[0], U[1], float(p[:, 0].sum() * dA),
+                             float(p[:, 1].sum() * dA), res.newton, res.converged, res.krylov, ahead, history, valid)
 
 
 def tang_steady(p3, dx, dy, v, mu, gamma_x=0.0, gamma_y=0.0, spin=0.0, E=210e9, nu=0.3, *,
-                warm: TangentialContact | None = None, tol=TOL, w_offset=W_OFFSET) -> TangentialContact:
+                warm: TangentialContact | None = None, tol=TOL, w_offset=W_OFFSET,
+                full_output=True) -> TangentialContact:
     """Steady-state rolling (du/dt = 0) with normal pressures p3 (nx, ny) [Pa] on the grid
     dx (rolling direction) x dy, rolling speed v [m/s], Coulomb coefficient mu and
     creepages gamma_x, gamma_y [-], spin [1/m].  `warm`: a previous solution as start.
-    `w_offset`: where the rigid slip is evaluated, x_I + w_offset dx (module notes)."""
-    w1, w2 = rigid_slip(np.shape(p3), dx, dy, v, gamma_x, gamma_y, spin, x_offset=w_offset * dx)
-    return _solve(p3, dx, dy, v, mu, w1, w2, 0.0, True, E, nu, warm, tol)
+    `tol`: the Newton iteration stops when no element changes set and the last step is below
+    tol times the largest traction (or its remaining error is, by quadratic convergence).
+    `w_offset`: where the rigid slip is evaluated, x_I + w_offset dx (module notes).
+    `full_output`: u1, u2 on the whole grid (one more FFT product); False: only on the window
+    around the contact (``window``), zero elsewhere."""
+    return _solve(p3, dx, dy, v, mu, gamma_x, gamma_y, spin, w_offset, True, E, nu, warm, tol, full_output)
 
 
 def tang_transient(p3, dx, dy, v, mu, gamma_x=0.0, gamma_y=0.0, spin=0.0, E=210e9, nu=0.3, *,
-                   state: TangentialContact | None = None, tol=TOL, w_offset=W_OFFSET) -> TangentialContact:
+                   state: TangentialContact | None = None, tol=TOL, w_offset=W_OFFSET,
+                   full_output=True) -> TangentialContact:
     """One time step dt = dx / v of transient rolling.  `state` is the previous step's
     solution (None: traction-free start); its tractions give the previous displacement
-    one element ahead, u(x + dx, t - dt), and start the iteration.  Call once per step."""
-    p3 = np.asarray(p3, dtype=float)
-    w1, w2 = rigid_slip(p3.shape, dx, dy, v, gamma_x, gamma_y, spin, x_offset=w_offset * dx)
-    ix, iy = np.nonzero(p3 > 0.0)
-    if state is None:
-        r_extra = 0.0
-    else:
-        ahead = state.u_ahead
-        if ahead is None or ahead.shape[1:] != p3.shape:
-            op = tangential_operator(p3.shape, dx, dy, E, nu)
-            ahead = op.displacements(np.stack([state.p1, state.p2]))[:, 1:]
-        r_extra = -np.column_stack([ahead[0][ix, iy], ahead[1][ix, iy]])
-    return _solve(p3, dx, dy, v, mu, w1, w2, r_extra, False, E, nu, state, tol, extrapolate=True)
+    one element ahead, u(x + dx, t - dt), and start the iteration (extrapolated from the
+    last steps: the predictor that would have done best on the last step).  Call once per
+    step.  `tol`, `w_offset`, `full_output` as in tang_steady (the time loop needs no
+    displacements outside the contact: full_output=False saves one FFT product per step)."""
+    return _solve(p3, dx, dy, v, mu, gamma_x, gamma_y, spin, w_offset, False, E, nu, state, tol, full_output)
