@@ -23,42 +23,50 @@ linear range; full slip F = -mu F3 w / |w|).
 Where the rigid slip is evaluated (spin).  The difference u_I - u_{I+dx} is the
 deformation the particle collects on its way from x_I + dx to x_I during the
 step, so the rigid slip belongs to the same path; it matters only where w
-varies along x, i.e. for spin (w2 = spin x v).  Evaluated at the element centre
-(offset 0) the spin acts like an extra lateral creepage -spin dx/2 against the
-midpoint of the path.  ``W_OFFSET`` (fraction of dx towards the leading edge,
-default 1/6) is Kalker's choice, kept in Vollebregt's CONTACT (rigid slip at
-x_I + dq/6): with it the spin results of CONTACT are reproduced on the same grid,
-and grid refinement shows it converges faster than 0 or 1/2 (docs/validation/
-30_contact.md, "Spin").
+varies along x, i.e. for spin (w2 = spin x v), where an offset f dx acts like a
+lateral creepage spin f dx.  ``W_OFFSET`` (fraction of dx towards the leading
+edge, default 1/6) is Kalker's choice, kept in Vollebregt's CONTACT (rigid slip
+at x_I + dq/6): with it CONTACT's spin results are reproduced on the same grid.
+Offsets 0, 1/6 and 1/2 (the path's midpoint) converge at first order to the
+same limit under grid refinement, 1/2 with the smallest error at a given grid
+(docs/validation/30_contact.md, "Spin"); ``w_offset`` selects it.
 
 Solver.  s = r + M p (in units of displacement per step, s dt) with M = A - A(x +
 dx) in steady state and M = A transient; products with M are FFT convolutions
-on the whole grid (one forward and one inverse transform of both traction
-components give the displacements on the grid and one row ahead), O(n log n).
-Kalker's active-set Newton method on these equations: elements are split into a
-stick set H (unknowns p1, p2; equations s = 0) and a slip set S (unknown: the
-traction angle theta, |p| = mu p3; equation: slip along the traction, t . s = 0
-with t the tangent to the traction circle).  One (inexact) Newton step, then
-elements of H exceeding the traction bound move to S and elements of S whose
-slip points along the traction move to H; repeat until the sets no longer
-change and the step is below tol times the traction level.  In the variables
-(dp on H, g dtheta on S) the Newton matrix is J = P' M P + D, D = |s|/g on S:
-symmetric positive definite in the transient case (M = A), solved by conjugate
-gradients; non-symmetric in steady state, solved by GMRES.  Both are
-matrix-free (FFT products) with a preconditioner of O(n log n) work: on H the
-inverse of Strang's circulant approximation of the 2x2 Cerruti kernel (FFT on a
-torus of the grid's size), preceded in steady state by the exact inverse of the
-transport difference (I - shift), a cumulative sum along x from the leading
-edge; on S the diagonal 1 / (t' M_II t + D).  No matrix of the size of the
-contact area is ever formed.  Warm starts (a previous solution's tractions and
-sets: the time loop, creepage ramps) cut the Newton steps to a few.
-Timings and scaling: benchmarks/contact.py; agreement with the former dense
-solver and with CONTACT: docs/validation/30_contact.md.
+on a window around the contact (its bounding box plus one element; one forward
+and one inverse transform of both traction components give the displacements
+on the window and one row ahead), O(n log n).  Kalker's active-set Newton
+method on these equations: elements are split into a stick set H (unknowns p1,
+p2; equations s = 0) and a slip set S (unknown: the traction angle theta, |p| =
+mu p3; equation: slip along the traction, t . s = 0 with t the tangent to the
+traction circle).  One (inexact) Newton step, then elements of H exceeding the
+traction bound move to S and elements of S whose slip points along the traction
+move to H; repeat until the sets no longer change and the step is below tol
+times the traction level, or is so small that quadratic convergence puts the
+remaining error below it.  In the variables (dp on H, g dtheta on S) the Newton
+matrix is J = P' M P + D, D = |s|/g on S: symmetric positive definite in the
+transient case (M = A), solved by conjugate gradients; non-symmetric in steady
+state, solved by GMRES.  Both are matrix-free (FFT products) with a
+preconditioner of O(n log n) work: on H the inverse of Strang's circulant
+approximation of the 2x2 Cerruti kernel (FFT on a torus of the window's size),
+preceded in steady state by the exact inverse of the transport difference (I -
+shift), a cumulative sum along x from the leading edge; on S (transient) the
+circulant inverse of the kernel shifted by the median of D, with a diagonal
+scaling for the spread of D, (steady) the diagonal 1 / (t' M_II t + D).  The
+Krylov tolerance follows the Newton phase (rough while the sets move, just
+accurate enough at the end).  No matrix of the size of the contact area is
+ever formed.  Warm starts (a previous solution's tractions and sets) cut the
+Newton steps to a few; in transient rolling the start is extrapolated from the
+last steps (constant, linear or quadratic: whichever would have predicted the
+last step best), so a time step takes one or two Newton steps.  Timings and
+scaling: benchmarks/contact.py; agreement with the former dense solver
+(tests/contact/tang_dense.py) and with CONTACT: docs/validation/30_contact.md.
 """
 from __future__ import annotations
 
 import functools
 import math
+import threading
 import warnings
 from typing import NamedTuple
 
@@ -157,22 +165,27 @@ class TangentialOperator:
         self.scale = float(self.a0.mean())        # unit of the scaled Newton systems
         self.symbol = np.ascontiguousarray(np.stack([k11 + bump, k12, k22 + bump]) / self.scale)
         self.inv = shifted_inverse(self.symbol, 0.0)        # (3, Tx, Ty//2+1), scaled units
-        self._fft = None
+        self._local = threading.local()
+
+    @property
+    def buffers(self) -> "_FFTBuffers":
+        """The FFT work arrays of the calling thread."""
+        b = getattr(self._local, "fft", None)
+        if b is None:
+            b = self._local.fft = _FFTBuffers(self)
+        return b
 
     def displacements(self, P):
         """u (2, nx + 1, ny) on the grid and one row ahead for P (2, nx, ny) (a view into a buffer
-        of the operator: copy it to keep it beyond the next call)."""
-        if self._fft is None:
-            self._fft = _FFTBuffers(self)
-        return self._fft.convolve(P)
+        of the operator: copy it to keep it beyond the next call).  P may be the buffer
+        ``buffers.conv_in`` itself (filled in place)."""
+        return self.buffers.convolve(P)
 
     def precondition(self, R, inv_a, inv_b=None):
         """Strang-circulant inverse symbols applied to R (4, nx, ny): fields 0, 1 with inv_a,
         2, 3 with inv_b, a pair skipped when its symbol is None (scaled units; a buffer view of
-        4 fields is returned)."""
-        if self._fft is None:
-            self._fft = _FFTBuffers(self)
-        return self._fft.precondition(R, inv_a, inv_b)
+        4 fields is returned).  R may be the buffer ``buffers.prec_in`` itself."""
+        return self.buffers.precondition(R, inv_a, inv_b)
 
 
 @numba.njit(cache=True)
@@ -216,10 +229,13 @@ class _FFTBuffers:
         self.tin = np.zeros((4, Tx, Ty))
         self.tspec = np.zeros((4, Tx, Ty // 2 + 1), complex)
         self.tout = np.zeros((4, Tx, Ty))
+        self.conv_in = self.rin[:, :, :ny]          # views: fill them in place to skip a copy
+        self.prec_in = self.tin[:, :nx, :ny]
 
     def convolve(self, P):
         nx, ny = self.nx, self.ny
-        self.rin[:, :, :ny] = P
+        if P is not self.conv_in:
+            self.rin[:, :, :ny] = P
         if _pocketfft is None:   # pragma: no cover
             F = sfft.rfft2(P, s=self.cin.shape[1:2] + (self.Ly,), workers=1)
             _kernel_product(F, self.hat)
@@ -238,7 +254,8 @@ class _FFTBuffers:
         lo = 0 if inv_a is not None else 2
         hi = 4 if inv_b is not None else 2
         tin, tspec, tout = self.tin[lo:hi], self.tspec[lo:hi], self.tout[lo:hi]
-        tin[:, :nx, :ny] = R[lo:hi]
+        if R is not self.prec_in:
+            tin[:, :nx, :ny] = R[lo:hi]
         if _pocketfft is None:   # pragma: no cover
             tspec[:] = sfft.rfft2(tin, workers=1)
         else:
@@ -637,7 +654,8 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
     g = np.ascontiguousarray(g, dtype=float)
     p = np.array(p, dtype=float).reshape(N, 2)
     stick = np.array(stick, dtype=bool)
-    grid = np.zeros((2,) + op.shape)
+    bufs = op.buffers
+    grid = bufs.conv_in                       # the FFT input arrays, filled in place
     scale = op.scale
     mdiag = op.a0 - op.a1 if steady else op.a0.copy()
     mdiag_s = mdiag / scale
@@ -670,7 +688,7 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
         _jacobian_rows(ix, iy, stick, t, D, u, steady, scale, x, y)
         return y
 
-    grid4 = np.zeros((4,) + op.shape)
+    grid4 = bufs.prec_in
     sc = np.ones(N)
     inv_slip = [None]
     inv_stick = [op.inv]
@@ -810,6 +828,14 @@ def _solve(p3, dx, dy, v, mu, gamma_x, gamma_y, spin, w_offset, steady, E, nu, w
     ix, iy = np.nonzero(contact)
     N = ix.size
     win = _window(contact)
+    if win is not None and warm is not None and warm.p1.shape == shape and warm.history is not None:
+        # keep the previous step's window while the contact fits in it (a stable window keeps the
+        # predictor's history and the operator): time loops with a breathing contact area
+        old = warm.history.window
+        tight = _window(contact, 0)
+        if _inside(tight, old) and (old[1] - old[0] + 1) * (old[3] - old[2] + 1) <= \
+                2 * (win[1] - win[0] + 1) * (win[3] - win[2] + 1):
+            win = old
     P1, P2, S1, S2 = (np.zeros(shape) for _ in range(4))
     st = np.zeros(shape, bool)
     # rigid slip at the contact elements, times dt (rigid_slip's formula at x_I + w_offset dx)
