@@ -492,8 +492,7 @@ follows CONTACT (the independent reference the project validates against); `w_of
 The solver (FFT products, Newton-Krylov, O(n log n) per iteration) against the former solver's algorithm
 kept as a test oracle (`tests/contact/tang_dense.py`: the same equations with the influence matrix of the contact
 elements formed and every Newton system factorised densely, O(n^3)), default tolerance {TOL:g} for the FFT solver,
-1e-12 for the dense one. The differences are within the FFT solver's tolerance; the times include the first
-call's compilation (numba) in the first row:
+1e-12 for the dense one. The differences are within the FFT solver's tolerance:
 
 {agree}
 
