@@ -78,6 +78,7 @@ from .influence import cerruti
 
 W_OFFSET = 1.0 / 6.0        # rigid slip evaluated at x_I + W_OFFSET dx (see the module notes)
 _DEBUG = False
+_SLIP_FFT = True
 QUADRATIC = 100.0           # bound of the Newton steps' quadratic constant (relative), for stopping
 TOL = 1e-8                  # default: Newton step <= TOL * traction level, no set change
 
@@ -570,8 +571,8 @@ def _givens(h, hnext, cs, sn, e, k):
 
 
 def _gmres(A, P, b, rtol, kmax, restarts=3):
-    """Right-preconditioned restarted GMRES (classical Gram-Schmidt applied twice, Givens
-    rotations): x with |b - A x| <= rtol |b|.  Returns x, steps (operator applications)."""
+    """Right-preconditioned restarted GMRES (classical Gram-Schmidt, repeated when it cancels;
+    Givens rotations): x with |b - A x| <= rtol |b|.  Returns x, steps (operator applications)."""
     shape = b.shape
     n = b.size
     bflat = b.ravel()
@@ -581,8 +582,8 @@ def _gmres(A, P, b, rtol, kmax, restarts=3):
         return x.reshape(shape), 0
     steps = 0
     r = bflat.copy()
-    V = np.zeros((kmax + 1, n))
-    Z = np.zeros((kmax, n))
+    V = np.empty((kmax + 1, n))
+    Z = np.empty((kmax, n))
     H = np.zeros((kmax + 1, kmax))
     for _ in range(restarts + 1):
         beta = float(np.linalg.norm(r))
@@ -598,12 +599,15 @@ def _gmres(A, P, b, rtol, kmax, restarts=3):
             w = A(Z[k].reshape(shape)).ravel()
             steps += 1
             Vk = V[: k + 1]
+            wn = float(np.linalg.norm(w))
             h = Vk @ w
             w -= h @ Vk
-            h2 = Vk @ w                  # re-orthogonalise (CGS2)
-            w -= h2 @ Vk
-            h += h2
             hnext = float(np.linalg.norm(w))
+            if hnext < 0.5 * wn:         # cancellation: re-orthogonalise (CGS2, Kahan-Parlett)
+                h2 = Vk @ w
+                w -= h2 @ Vk
+                h += h2
+                hnext = float(np.linalg.norm(w))
             _givens(h, hnext, cs, sn, e, k)
             H[: k + 1, k] = h
             k_used = k + 1
@@ -692,7 +696,7 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
     sc = np.ones(N)
     inv_slip = [None]
     inv_stick = [op.inv]
-    slip_fft = not steady
+    slip_fft = (not steady) and _SLIP_FFT
 
     def Pinv(x):
         four = slip_fft and inv_slip[0] is not None
@@ -734,7 +738,7 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
     converged = False
     sets_changed = not warm
     n_changed = N if not warm else 0
-    few = max(2, N // 200)                      # set changes after which the next step may be final
+    few = 2                                     # set changes after which the next step may be final
     p_level = max(float(np.abs(p).max(initial=0.0)), 1e-300)
     q_lim = math.sqrt(tol / QUADRATIC)           # steps this small are final (quadratic convergence) ...
     eta_final = min(1e-3, 0.1 * tol / q_lim)      # ... if solved this accurately
