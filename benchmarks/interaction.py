@@ -26,6 +26,9 @@ GREENS = ROOT / "build" / "cases" / "default" / "greens.npz"
 
 
 def run() -> str:
+    import os
+
+    load0 = os.getloadavg()[0]
     wheel, wc = c20_modes()
     contact = default_contact(0.35)
     if GREENS.exists():
@@ -102,6 +105,7 @@ def run() -> str:
                     "table node) cost an extra Newton step or two.")
         ref.append(f"| -> 8 s of rolling with TANG | {t_k * n_steps / 60:.0f} min |")
     t_full = runs["full model"][0]
+    load1 = os.getloadavg()[0]
     return f"""## Interaction
 
 `solvers/interaction.py`, `OMP_NUM_THREADS=1 .venv/bin/python -m benchmarks.interaction`. Median of 3 runs after
@@ -110,7 +114,8 @@ tables, no early stop. Wheel: C20 at y^W = -32 mm, {len(wheel.f_r)} modes below 
 suspension + {len(wheel.f_r) - n_rigid} flexible) as recursive modal filters; rail: moving Green's function,
 {g.shape[0]} lags ({1e3 * g.shape[0] * DT:.0f} ms), {rail_src}, ring-buffer convolution; contact:
 {'build/cases/default/contact.npz' if CONTACT.exists() else 'analytic Hertz stand-in'}, mu = 0.35,
-gamma_y = {GAMMA_Y}; full-rate history unless stated (the final 0.5 s always at full rate).
+gamma_y = {GAMMA_Y}; full-rate history unless stated (the final 0.5 s always at full rate). Load average of the
+machine {load0:.1f} at the start, {load1:.1f} at the end of the run (above 1: other processes shared the 2 cores).
 
 | run (8 s, {n_steps:,} steps) | wall | steps/s | per step |
 |---|---:|---:|---:|

@@ -77,9 +77,7 @@ from scipy import fft as sfft
 from .influence import cerruti
 
 W_OFFSET = 1.0 / 6.0        # rigid slip evaluated at x_I + W_OFFSET dx (see the module notes)
-_DEBUG = False
-_SLIP_FFT = True
-QUADRATIC = 100.0           # bound of the Newton steps' quadratic constant (relative), for stopping
+QUADRATIC = 10.0            # bound of the Newton steps' quadratic constant (relative), for stopping
 TOL = 1e-8                  # default: Newton step <= TOL * traction level, no set change
 
 
@@ -525,33 +523,6 @@ def _update_sets(stick, theta, g, p, s, rel):
 # Krylov solvers (matrix-free, preconditioned)
 # ----------------------------------------------------------------------------------------------
 
-def _pcg(A, P, b, rtol, kmax):
-    """Preconditioned CG for SPD A: x with |b - A x| <= rtol |b|.  Returns x, steps."""
-    x = np.zeros_like(b)
-    r = b.copy()
-    bn = math.sqrt(float(np.vdot(b, b)))
-    if bn == 0.0:
-        return x, 0
-    z = P(r)
-    d = z.copy()
-    rz = float(np.vdot(r, z))
-    for k in range(1, kmax + 1):
-        q = A(d)
-        dq = float(np.vdot(d, q))
-        if dq <= 0.0:
-            return x, k
-        alpha = rz / dq
-        x += alpha * d
-        r -= alpha * q
-        if math.sqrt(float(np.vdot(r, r))) <= rtol * bn:
-            return x, k
-        z = P(r)
-        rz, rz_old = float(np.vdot(r, z)), rz
-        d *= rz / rz_old
-        d += z
-    return x, kmax
-
-
 @numba.njit(cache=True)
 def _givens(h, hnext, cs, sn, e, k):
     """GMRES: apply the previous Givens rotations to column h (k + 1), make the new one that
@@ -696,7 +667,7 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
     sc = np.ones(N)
     inv_slip = [None]
     inv_stick = [op.inv]
-    slip_fft = (not steady) and _SLIP_FFT
+    slip_fft = not steady
 
     def Pinv(x):
         four = slip_fft and inv_slip[0] is not None
@@ -769,9 +740,6 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
         u = slip_of(p)
         to_slip, to_stick = _update_sets(stick, theta, g, p, s, 1e-9)
         p_level = max(float(np.abs(p).max(initial=0.0)), 1e-300)
-        if _DEBUG:
-            print(f"  newton {newton}: eta {eta:.0e} krylov {k} change/p {change / p_level:.2e} "
-                  f"to_slip {to_slip} to_stick {to_stick} |R| {r_max:.2e}")
         final = change <= tol * p_level or (not sets_changed and change <= q_lim * p_level
                                             and eta * change <= 0.1 * tol * p_level)
         n_changed = to_slip + to_stick
@@ -868,6 +836,13 @@ def _solve(p3, dx, dy, v, mu, gamma_x, gamma_y, spin, w_offset, steady, E, nu, w
     if warm is not None and warm.p1.shape == shape:
         p0 = np.column_stack([warm.p1[ix, iy], warm.p2[ix, iy]])
         stick0 = ~warm.slip[ix, iy]
+        new = ~(warm.stick | warm.slip)[ix, iy]       # elements entering the contact: start sliding
+        if new.any():                                 # against the rigid slip (the set update corrects)
+            rn = np.hypot(r[new, 0], r[new, 1])
+            ok = rn > 0.0
+            idx = np.flatnonzero(new)[ok]
+            p0[idx] = -(g[idx] / rn[ok])[:, None] * r[idx]
+            stick0[idx] = False
         h = warm.history
         if transient_prev and h is not None and h.order > 0 and h.window == win and _inside(win, warm.window):
             dp, du = (h.dp, h.du) if h.order == 1 else (h.dp + h.d2p, h.du + h.d2u)    # predictor
