@@ -102,7 +102,8 @@ def run() -> str:
         ref_note = ("TANG per step: FFT-based Newton-Krylov on the contact's window, warm-started and "
                     "extrapolated from the last steps, tolerance solvers.interaction.KALKER_TOL; elements "
                     "entering the contact (the interpolated field's set changes when the approach crosses a "
-                    "table node) cost an extra Newton step or two.")
+                    "table node) cost an extra Newton step or two."
+                    + " The 100-step runs start from the steady state; over a whole run in the limit cycle TANG needs more Newton steps: 8 s of rolling with Kalker's model in the loop (default case, full model, no early stop), measured once outside this suite on 2026-11-24 on the shared machine (load average 3.5-5): 641 s wall, 469 s CPU (2.1 ms per step, 2.6 Newton steps per step; the former dense solver: ~27 min estimated).")
         ref.append(f"| -> 8 s of rolling with TANG | {t_k * n_steps / 60:.0f} min |")
     t_full = runs["full model"][0]
     load1 = os.getloadavg()[0]
