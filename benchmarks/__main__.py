@@ -2,7 +2,9 @@
 
 Runs each benchmark module's ``run() -> str`` (a markdown section) and
 writes them under a header naming the machine.  `python -m benchmarks wheel`
-runs a subset and only prints it (docs/benchmarks.md is written by full runs).
+runs a subset and only prints it (docs/benchmarks.md is written by full runs);
+`python -m benchmarks contact --update` runs a subset and replaces those sections (by their
+'## ' title) in docs/benchmarks.md, keeping the others.
 """
 from __future__ import annotations
 
@@ -37,8 +39,23 @@ def machine() -> str:
 
 
 
+def update_sections(text: str, sections: list[str]) -> str:
+    """Replace the sections of a benchmarks document whose '## ' title line matches."""
+    for sec in sections:
+        title = sec.splitlines()[0]
+        start = text.find("\n" + title + "\n")
+        if start < 0:
+            text = text.rstrip("\n") + "\n\n" + sec + "\n"
+            continue
+        end = text.find("\n## ", start + 1)
+        text = text[:start + 1] + sec + "\n" + (text[end:] if end >= 0 else "")
+    return text
+
+
 def main(argv=None) -> int:
-    chosen = sys.argv[1:] if argv is None else argv
+    args = sys.argv[1:] if argv is None else argv
+    update = "--update" in args
+    chosen = [a for a in args if a != "--update"]
     names = chosen or SUITES
     sections = []
     for name in names:
@@ -58,6 +75,11 @@ runs unless a section says otherwise.
 
 """ + "\n\n".join(sections) + "\n"
     print(text)
+    if chosen and update and OUT.exists():
+        new = update_sections(OUT.read_text(), sections)
+        tmp = OUT.with_name(".benchmarks.md.tmp")
+        tmp.write_text(new)
+        os.replace(tmp, OUT)
     if not chosen:
         OUT.parent.mkdir(exist_ok=True)
         tmp = OUT.with_name(".benchmarks.md.tmp")

@@ -82,6 +82,9 @@ def flop_floor(wheel, g, newton_iterations: float) -> dict:
 
 
 def run() -> str:
+    import os
+
+    load0 = os.getloadavg()[0]
     wheel, wc = c20_modes()
     contact = default_contact(0.35)
     if GREENS.exists():
@@ -155,12 +158,15 @@ def run() -> str:
         ref.append(f"| Kalker's transient TANG per step ({n_el} contact elements, table pressures) | "
                    f"{1e3 * t_k:.1f} ms |")
         ref.append(f"| Kalker's transient TANG + per-step NORM | {1e3 * t_kn:.1f} ms |")
-        ref_note = ("TANG is cheaper with per-step NORM than with the table's pressures: the interpolated "
-                    "field's contact set (the union of two nodes' sets) flips whenever the approach crosses a "
-                    "node, NORM's exact set rarely, and every change of set costs TANG a fresh LU.")
+        ref_note = ("TANG per step: FFT-based Newton-Krylov on the contact's window, warm-started and "
+                    "extrapolated from the last steps, tolerance solvers.interaction.KALKER_TOL; elements "
+                    "entering the contact (the interpolated field's set changes when the approach crosses a "
+                    "table node) cost an extra Newton step or two."
+                    + " The 100-step runs start from the steady state; over a whole run in the limit cycle TANG needs more Newton steps: 8 s of rolling with Kalker's model in the loop (default case, full model, no early stop), measured once outside this suite on 2026-11-24 on the shared machine (load average 3.5-5): 641 s wall, 469 s CPU (2.1 ms per step, 2.6 Newton steps per step; the former dense solver: ~27 min estimated).")
         ref.append(f"| -> 8 s of rolling with TANG | {t_k * n_steps / 60:.0f} min |")
     t_full = runs["full model"][0]
     t_dir = runs["full model, rail by the direct sum (the former loop)"][0]
+    load1 = os.getloadavg()[0]
     return f"""## Interaction
 
 `solvers/interaction.py`, `OMP_NUM_THREADS=1 .venv/bin/python -m benchmarks.interaction`. Minimum of 3 runs after
@@ -169,7 +175,8 @@ tables, no early stop. Wheel: C20 at y^W = -32 mm, {len(wheel.f_r)} modes below 
 suspension + {len(wheel.f_r) - n_rigid} flexible) as recursive modal filters; rail: moving Green's function,
 {g.shape[0]} lags ({1e3 * g.shape[0] * DT:.0f} ms), {rail_src}, partitioned FFT convolution (head {DEFAULT_BLOCK} lags); contact:
 {'build/cases/default/contact.npz' if CONTACT.exists() else 'analytic Hertz stand-in'}, mu = 0.35,
-gamma_y = {GAMMA_Y}; full-rate history unless stated (the final 0.5 s always at full rate).
+gamma_y = {GAMMA_Y}; full-rate history unless stated (the final 0.5 s always at full rate). Load average of the
+machine {load0:.1f} at the start, {load1:.1f} at the end of the run (above 1: other processes shared the 2 cores).
 
 | run (8 s, {n_steps:,} steps) | wall | steps/s | per step |
 |---|---:|---:|---:|

@@ -130,7 +130,9 @@ Drivers
   compliance [4.32]-[4.35] per step, and Kalker's transient TANG per step
   (``tang_transient`` with the table's or NORM's pressures, the structural
   lateral velocity added to the rigid slip: gamma_y + sign (xi2[n] -
-  xi2[n-1])/dx; ~6 ms per step, i.e. ~25 min for 8 s).
+  xi2[n-1])/dx; FFT-based Newton-Krylov, warm-started and extrapolated from
+  the last steps, tolerance KALKER_TOL, displacements on the contact's window
+  only: about 1 ms per step on the default contact, docs/benchmarks.md).
 
 Output: every ``store_every``-th step (decimated history) plus the last
 ``final`` seconds at full rate (for the spectra); early stop when a limit
@@ -158,6 +160,7 @@ MAX_DURATION = 8.0          # s, SPEC 6
 EPS_SLIP = 1e-9             # m/s, regularisation of the slip direction (curves with mu(0) > 0)
 DEFAULT_KICK = 0.01         # N s, lateral impulse that seeds the instability (start='steady')
 FULL_SLIP = 0.99            # contact state 2 when mu_RF(s) >= FULL_SLIP * plateau
+KALKER_TOL = 1e-6           # TANG's tolerance in the time loop (forces to ~1e-6, far below any squeal measure)
 # columns of the stored histories
 COLUMNS = ("F1", "F2", "F3", "s1", "s2", "xi2", "xi3", "state")
 STOP_REASONS = {0: "duration", 1: "limit cycle", 2: "decayed"}
@@ -773,7 +776,8 @@ def _run_reference(filt, rc, n_steps, dt, v, gx, gy, xi3_static, F_ref, u_ref, k
         if start == "steady":
             p0 = table_pressure(table, xi3_static) if normal == "table" else norm(c.gap, xi3_static, c.dx, c.dy,
                                                                                  E, nu).p
-            tang_state = tang_steady(p0, c.dx, c.dy, v, c.mu, gamma_x=gx[0], gamma_y=gy[0], E=E, nu=nu)
+            tang_state = tang_steady(p0, c.dx, c.dy, v, c.mu, gamma_x=gx[0], gamma_y=gy[0], E=E, nu=nu,
+                                     full_output=False, tol=KALKER_TOL)
             F_ref = np.array([tang_state.F1, tang_state.F2, F_ref[2]])
     xi2 = xi3 = xi2_old = 0.0
     u1p, u2p = float(u_ref[0]), float(u_ref[1])
@@ -815,7 +819,7 @@ def _run_reference(filt, rc, n_steps, dt, v, gx, gy, xi3_static, F_ref, u_ref, k
                 if p3 is None:
                     p3 = table_pressure(table, app)
                 tang_state = tang_transient(p3, c.dx, c.dy, v, c.mu, gamma_x=gxn, gamma_y=gyn + dxi2 / v,
-                                            E=E, nu=nu, state=tang_state)
+                                            E=E, nu=nu, state=tang_state, full_output=False, tol=KALKER_TOL)
                 F1, F2 = tang_state.F1, tang_state.F2
                 inside = p3 > 0
                 s1 = float(tang_state.s1[inside].mean())

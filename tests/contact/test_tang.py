@@ -138,3 +138,102 @@ def test_loss_of_contact_and_no_friction(hertz_1mm):
     free = tang_steady(ns.p, 1e-3, 1e-3, V, 0.0, gamma_y=-0.003)
     assert free.F2 == 0 and free.slip.sum() == ns.contact.sum()
     assert np.allclose(free.s2[ns.contact], -0.003 * V)
+
+
+# ----------------------------------------------------------------------------------------------
+# the FFT-based solver against the dense reference, its operator, window and predictor
+# ----------------------------------------------------------------------------------------------
+
+def _small_contact(n=13):
+    H = hertz(1.0, curvature_ratio(0.7), 65e3)
+    dx, dy = 2.2 * H.a / n, 2.2 * H.b / n
+    X, Y = grid(n, n, dx, dy)
+    return H.pressure(X, Y), dx, dy
+
+
+@pytest.mark.parametrize("kw", [dict(gamma_y=-0.002), dict(gamma_x=0.001, gamma_y=0.0015),
+                                dict(gamma_y=-6e-4, spin=0.6 / 5.4e-3), dict(gamma_y=-0.02)])
+def test_fft_solver_matches_dense_reference_steady(kw):
+    from tests.contact.tang_dense import tang_dense
+
+    p3, dx, dy = _small_contact()
+    sol = tang_steady(p3, dx, dy, V, MU, tol=1e-12, **kw)
+    P1, P2, St = tang_dense(p3, dx, dy, V, MU, **kw)
+    scale = MU * p3.max()
+    assert sol.converged
+    assert np.abs(sol.p1 - P1).max() < 1e-8 * scale and np.abs(sol.p2 - P2).max() < 1e-8 * scale
+    assert np.array_equal(sol.stick, St)
+
+
+def test_fft_solver_matches_dense_reference_transient():
+    from tests.contact.tang_dense import tang_dense
+
+    p3, dx, dy = _small_contact()
+    st, prev = None, None
+    for k in range(6):
+        gy = -0.003 * (1 + 0.5 * np.sin(k))
+        st = tang_transient(p3, dx, dy, V, MU, gamma_x=2e-4, gamma_y=gy, state=st, tol=1e-12)
+        P1, P2, St = tang_dense(p3, dx, dy, V, MU, gamma_x=2e-4, gamma_y=gy, steady=False, prev=prev)
+        prev = (P1, P2)
+        scale = MU * p3.max()
+        assert np.abs(st.p1 - P1).max() < 1e-8 * scale and np.abs(st.p2 - P2).max() < 1e-8 * scale
+        assert np.array_equal(st.stick, St)
+
+
+def test_operator_products_equal_dense_matrices():
+    """The FFT product gives A p on the grid and one row ahead, A(x + dx) p."""
+    from solvers.contact.influence import dense_matrix, tangential_kernels
+    from solvers.contact.tang import tangential_operator
+
+    nx, ny, dx, dy = 9, 7, 0.5e-3, 0.4e-3
+    rng = np.random.default_rng(3)
+    P = rng.standard_normal((2, nx, ny))
+    u = np.array(tangential_operator((nx, ny), dx, dy).displacements(P))
+    for shift, rows in ((0, u[:, :nx]), (1, u[:, 1:])):
+        K = [dense_matrix(k) for k in tangential_kernels(nx, ny, dx, dy, 210e9, 0.3, shift_x=shift)]
+        ref1 = K[0] @ P[0].ravel() + K[1] @ P[1].ravel()
+        ref2 = K[1] @ P[0].ravel() + K[2] @ P[1].ravel()
+        assert np.allclose(rows[0].ravel(), ref1, rtol=0, atol=1e-12 * np.abs(ref1).max())
+        assert np.allclose(rows[1].ravel(), ref2, rtol=0, atol=1e-12 * np.abs(ref2).max())
+
+
+def test_window_output_and_predictor_do_not_change_the_answer(hertz_1mm):
+    ns = hertz_1mm
+    args = (ns.p, 1e-3, 1e-3, V, MU)
+    full = tang_steady(*args, gamma_y=-0.003)
+    win = tang_steady(*args, gamma_y=-0.003, full_output=False)
+    assert np.abs(full.p2 - win.p2).max() < 1e-7 * MU * ns.p.max()
+    i0, i1, j0, j1 = win.window
+    assert np.allclose(win.u2[i0:i1 + 1, j0:j1 + 1], full.u2[i0:i1 + 1, j0:j1 + 1], rtol=0,
+                       atol=1e-6 * np.abs(full.u2).max())
+    # transient with the extrapolating predictor vs the same steps started from the plain previous state
+    st = None
+    for k in range(30):
+        gy = -0.003 * (1 + 0.3 * np.sin(0.4 * k))
+        st = tang_transient(*args, gamma_y=gy, state=st, tol=1e-10)
+        plain = tang_transient(*args, gamma_y=-0.003 * (1 + 0.3 * np.sin(0.4 * (k + 1))),
+                               state=st._replace(history=None), tol=1e-10)
+        pred = tang_transient(*args, gamma_y=-0.003 * (1 + 0.3 * np.sin(0.4 * (k + 1))), state=st, tol=1e-10)
+        assert abs(pred.F2 - plain.F2) <= 1e-8 * abs(plain.F2)
+        assert np.abs(pred.p2 - plain.p2).max() < 1e-8 * MU * ns.p.max()
+
+
+def test_spin_matches_contact_fastsim_case():
+    """CONTACT's published FASTSIM example, case 1 (Vollebregt's CONTACT, examples/fastsim.inp and
+    fastsim.ref_out): Hertz a = 8 mm, b = 4 mm, 82 kN, G = 82 GPa, nu = 0.28, mu = 0.3, steady rolling
+    with eta = -6.25e-4 and spin 6.25e-4 /mm on 44 x 44 elements over 1.1 times the ellipse.  CONTACT
+    (the exact theory, NORM + steady TANG): Fy / (mu Fn) = -0.6074, Mz = -4.821e4 N mm, 356 adhesion
+    and 920 slip elements of 1276.  The rigid slip at x + dx/6 (W_OFFSET) is CONTACT's discretisation."""
+    G28, NU28 = 82e9, 0.28
+    E28 = 2 * G28 * (1 + NU28)
+    m = 44
+    dx, dy = 2 * 1.1 * 8e-3 / m, 2 * 1.1 * 4e-3 / m
+    X, Y = grid(m, m, dx, dy)
+    _, ns = approach_for_load(82e3, 0.8464 * X**2 + 2.406 * Y**2, dx, dy, E28, NU28)
+    assert ns.contact.sum() == 1276
+    sol = tang_steady(ns.p, dx, dy, 30.0, 0.3, gamma_y=-6.25e-4, spin=0.625, E=E28, nu=NU28)
+    fy = sol.F2 / (0.3 * ns.F3)
+    mz = (X * sol.p2 - Y * sol.p1).sum() * dx * dy * 1e3           # N mm
+    assert fy == pytest.approx(-0.6074, rel=5e-3)
+    assert mz == pytest.approx(-4.821e4, rel=5e-3)
+    assert abs(int(sol.stick.sum()) - 356) <= 4 and abs(sol.F1) < 1e-6 * ns.F3
