@@ -44,8 +44,9 @@ class PartitionedConvolver(NamedTuple):
     records the force of step n and returns the displacement at step n + 1; pass the tuple to
     ``partitioned_step`` inside numba.
 
-    head (B, 4): g[k] for k < B as (g22, g23, g32, g33), row 0 zero; hbuf (2B, 2) doubled ring
-    of the last B forces; H (P-1, 8, B+1) spectra of the partitions (rows: Re of g22, g23, g32,
+    head (4, B): the lags k = 1..B-1 of (g22, g23, g32, g33) in reverse order (column i holds lag
+    B - 1 - i; the last column is unused), so that the head sum runs forward over the doubled
+    ring hbuf (2, 2B) of the last B forces (rows F2, F3; F[n] at p and p + B); H (P-1, 8, B+1) spectra of the partitions (rows: Re of g22, g23, g32,
     g33, then their Im); X (P-1, 4, B+1) delay line of input spectra (Re F2, Im F2, Re F3,
     Im F3); Y (4, B+1) their sum (Re, Im of the xi2 and xi3 spectra): real arrays, so the
     multiply-adds over the bins vectorise; seg (2B,) complex last two input blocks (F2 + i F3);
@@ -62,7 +63,7 @@ class PartitionedConvolver(NamedTuple):
 
     @property
     def block(self) -> int:
-        return self.head.shape[0]
+        return self.head.shape[1]
 
     def step(self, F2: float, F3: float) -> tuple[float, float]:
         return partitioned_step(self, F2, F3)
@@ -89,8 +90,8 @@ def partitioned_convolver(g: np.ndarray, block: int | None = DEFAULT_BLOCK) -> P
     if B < K and (B < 2 or B & (B - 1)):
         raise ValueError(f"block = {block} must be a power of two >= 2 (or None for the direct sum)")
     flat = g.reshape(K, 4)
-    head = np.zeros((B, 4))
-    head[1:] = flat[1:B]
+    head = np.zeros((4, B))
+    head[:, : B - 1] = flat[1:B][::-1].T
     P = -(-K // B)
     n = max(P - 1, 0)
     H = np.zeros((n, 8, B + 1))
@@ -101,7 +102,7 @@ def partitioned_convolver(g: np.ndarray, block: int | None = DEFAULT_BLOCK) -> P
         S = np.fft.rfft(part, axis=0).T                 # (4, B + 1)
         H[p - 1, :4] = S.real
         H[p - 1, 4:] = S.imag
-    return PartitionedConvolver(head, np.zeros((2 * B, 2)), H, np.zeros((n, 4, B + 1)), np.zeros((4, B + 1)),
+    return PartitionedConvolver(head, np.zeros((2, 2 * B)), H, np.zeros((n, 4, B + 1)), np.zeros((4, B + 1)),
                                 np.zeros(2 * B, complex), np.zeros((B, 2)), np.zeros(3, np.int64))
 
 
@@ -110,7 +111,7 @@ def _next_block(pc):
     """At a block boundary: the new input segment's spectrum into the delay line, then the
     partitions' contribution to the next B outputs (overlap-save)."""
     head, hbuf, H, X, Y, seg, tail, ctr = pc
-    B = head.shape[0]
+    B = head.shape[1]
     n = H.shape[0]
     N = 2 * B
     Z = np.fft.fft(seg)
@@ -164,15 +165,17 @@ def _accumulate(H, X, Y):
 def partitioned_step(pc, F2, F3):
     """njit: record (F2, F3) of step n, return (xi2, xi3) at step n + 1 (module notes)."""
     head, hbuf, H, X, Y, seg, tail, ctr = pc
-    B = head.shape[0]
+    B = head.shape[1]
     n = ctr[0]
     p = ctr[1]
-    hbuf[p, 0] = F2
-    hbuf[p, 1] = F3
-    hbuf[p + B, 0] = F2
-    hbuf[p + B, 1] = F3
-    # head: F[n+1-k] sits at j = p + B - (k - 1); four independent partial sums (lags k mod 4)
-    # so the additions do not wait on each other (the loop is latency-bound otherwise)
+    hbuf[0, p] = F2
+    hbuf[1, p] = F3
+    hbuf[0, p + B] = F2
+    hbuf[1, p + B] = F3
+    # head: lag k = B - 1 - i meets F[n+1-k] at q + i, q = p + 2 (forward over both arrays); four
+    # independent partial sums, so the additions do not wait on each other
+    q = p + 2
+    m = B - 1
     a2 = 0.0
     b2 = 0.0
     c2 = 0.0
@@ -181,34 +184,21 @@ def partitioned_step(pc, F2, F3):
     b3 = 0.0
     c3 = 0.0
     d3 = 0.0
-    j = p + B
-    k = 1
-    while k + 3 < B:
-        f2 = hbuf[j, 0]
-        f3 = hbuf[j, 1]
-        a2 += head[k, 0] * f2 + head[k, 1] * f3
-        a3 += head[k, 2] * f2 + head[k, 3] * f3
-        f2 = hbuf[j - 1, 0]
-        f3 = hbuf[j - 1, 1]
-        b2 += head[k + 1, 0] * f2 + head[k + 1, 1] * f3
-        b3 += head[k + 1, 2] * f2 + head[k + 1, 3] * f3
-        f2 = hbuf[j - 2, 0]
-        f3 = hbuf[j - 2, 1]
-        c2 += head[k + 2, 0] * f2 + head[k + 2, 1] * f3
-        c3 += head[k + 2, 2] * f2 + head[k + 2, 3] * f3
-        f2 = hbuf[j - 3, 0]
-        f3 = hbuf[j - 3, 1]
-        d2 += head[k + 3, 0] * f2 + head[k + 3, 1] * f3
-        d3 += head[k + 3, 2] * f2 + head[k + 3, 3] * f3
-        j -= 4
-        k += 4
-    while k < B:
-        f2 = hbuf[j, 0]
-        f3 = hbuf[j, 1]
-        a2 += head[k, 0] * f2 + head[k, 1] * f3
-        a3 += head[k, 2] * f2 + head[k, 3] * f3
-        j -= 1
-        k += 1
+    i = 0
+    while i + 3 < m:
+        a2 += head[0, i] * hbuf[0, q + i] + head[1, i] * hbuf[1, q + i]
+        a3 += head[2, i] * hbuf[0, q + i] + head[3, i] * hbuf[1, q + i]
+        b2 += head[0, i + 1] * hbuf[0, q + i + 1] + head[1, i + 1] * hbuf[1, q + i + 1]
+        b3 += head[2, i + 1] * hbuf[0, q + i + 1] + head[3, i + 1] * hbuf[1, q + i + 1]
+        c2 += head[0, i + 2] * hbuf[0, q + i + 2] + head[1, i + 2] * hbuf[1, q + i + 2]
+        c3 += head[2, i + 2] * hbuf[0, q + i + 2] + head[3, i + 2] * hbuf[1, q + i + 2]
+        d2 += head[0, i + 3] * hbuf[0, q + i + 3] + head[1, i + 3] * hbuf[1, q + i + 3]
+        d3 += head[2, i + 3] * hbuf[0, q + i + 3] + head[3, i + 3] * hbuf[1, q + i + 3]
+        i += 4
+    while i < m:
+        a2 += head[0, i] * hbuf[0, q + i] + head[1, i] * hbuf[1, q + i]
+        a3 += head[2, i] * hbuf[0, q + i] + head[3, i] * hbuf[1, q + i]
+        i += 1
     x2 = (a2 + b2) + (c2 + d2)
     x3 = (a3 + b3) + (c3 + d3)
     ctr[1] = p + 1 if p + 1 < B else 0
