@@ -28,20 +28,12 @@ from pathlib import Path
 
 import numpy as np
 
+from benchmarks.timing import min_time
+
 ROOT = Path(__file__).resolve().parent.parent
 BUILD = ROOT / "build"
 
 
-def best(f, n: int, warm: int = 0) -> float:
-    """Minimum wall time (s) of n calls after ``warm`` untimed ones."""
-    for _ in range(warm):
-        f()
-    t = []
-    for _ in range(n):
-        t0 = time.perf_counter()
-        f()
-        t.append(time.perf_counter() - t0)
-    return min(t)
 
 
 def _kernels(rows: list) -> None:
@@ -75,7 +67,7 @@ def _kernels(rows: list) -> None:
         return G
 
     moving_green_waves(T["k"][:4], a[:4], v, dt, 8, RAIL_NT)          # JIT (or cache load)
-    t_new = best(lambda: moving_green_waves(T["k"], a, v, dt, RAIL_LAGS, RAIL_NT), 3)
+    t_new = min_time(lambda: moving_green_waves(T["k"], a, v, dt, RAIL_LAGS, RAIL_NT), 3)
     g_new = moving_green_waves(T["k"], a, v, dt, RAIL_LAGS, RAIL_NT)
     t0 = time.perf_counter()
     g_old = moving_green(transfer, v, dt, RAIL_LAGS, RAIL_NT)
@@ -148,12 +140,12 @@ def _convolution(rows: list) -> None:
     ref = convolve_direct(g, F[:20000])
     rc = ring_convolver(g)
     ring_history(rc, F[:10])
-    t_d = best(lambda: ring_history(ring_convolver(g), F), 3) / len(F)
+    t_d = min_time(lambda: ring_history(ring_convolver(g), F), 3) / len(F)
     rows.append(f"| direct sum (ring buffer, the former time loop), {K} lags ({src}) | {1e9 * t_d:.0f} ns/step | 1x |")
     for B in (64, 128, 256):
         pc = partitioned_convolver(g, B)
         partitioned_history(pc, F[:10])
-        t_p = best(lambda: partitioned_history(partitioned_convolver(g, B), F), 3) / len(F)
+        t_p = min_time(lambda: partitioned_history(partitioned_convolver(g, B), F), 3) / len(F)
         err = np.abs(partitioned_convolver(g, B).response(F[:20000]) - ref).max() / np.abs(ref).max()
         flops = 8 * (B - 1) + 32 * (-(-K // B) - 1) * (B + 1) / B
         rows.append(f"| partitioned FFT convolution, head B = {B} ({flops:.0f} flops/step + FFTs), error vs direct "

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from benchmarks.timing import median_time
+from benchmarks.timing import median_time, min_time
 from solvers.partitioned import DEFAULT_BLOCK
 
 from solvers.interaction import WheelModes, point_contact, simulate
@@ -26,16 +26,6 @@ RAIL_LAGS = 2048
 GREENS = ROOT / "build" / "cases" / "default" / "greens.npz"
 
 
-def best_time(f, n: int) -> float:
-    """Minimum wall time of n calls (the machine may be shared: the minimum is the cost)."""
-    import time
-
-    t = []
-    for _ in range(n):
-        t0 = time.perf_counter()
-        f()
-        t.append(time.perf_counter() - t0)
-    return min(t)
 
 
 def flop_rate() -> float:
@@ -57,7 +47,7 @@ def flop_rate() -> float:
     a = np.random.default_rng(0).standard_normal(4096)
     b = a.copy()
     dots(a, b, 2)
-    t = best_time(lambda: dots(a, b, 20000), 3)
+    t = min_time(lambda: dots(a, b, 20000), 3)
     return 2 * 4096 * 20000 / (t * 1e9)
 
 
@@ -110,7 +100,7 @@ def run() -> str:
                                ("rail only (no wheel)", None, g, {}),
                                ("contact only (no structures)", None, None, {})):
         res = []
-        t = best_time(lambda: res.append(simulate(w, k, contact, duration=8.0, **kw, **extra)), 3)
+        t = min_time(lambda: res.append(simulate(w, k, contact, duration=8.0, **kw, **extra)), 3)
         runs[label] = (t, res[-1])
     rows = []
     for label, (t, r) in runs.items():
