@@ -6,8 +6,8 @@ import time
 import numpy as np
 
 
-def median_time(f, n: int, warm: int = 0) -> float:
-    """Median wall time (s) of n calls of f() after `warm` untimed calls."""
+def _times(f, n: int, warm: int) -> list[float]:
+    """Wall times (s) of n calls of f() after `warm` untimed calls."""
     for _ in range(warm):
         f()
     t = []
@@ -15,17 +15,15 @@ def median_time(f, n: int, warm: int = 0) -> float:
         t0 = time.perf_counter()
         f()
         t.append(time.perf_counter() - t0)
-    return float(np.median(t))
+    return t
+
+
+def median_time(f, n: int, warm: int = 0) -> float:
+    """Median wall time (s) of n calls of f() after `warm` untimed calls."""
+    return float(np.median(_times(f, n, warm)))
 
 
 def min_time(f, n: int, warm: int = 0) -> float:
     """Minimum wall time (s) of n calls of f() after `warm` untimed calls (on a shared machine the
     minimum is the cost)."""
-    for _ in range(warm):
-        f()
-    t = []
-    for _ in range(n):
-        t0 = time.perf_counter()
-        f()
-        t.append(time.perf_counter() - t0)
-    return float(min(t))
+    return float(min(_times(f, n, warm)))
