@@ -1,0 +1,184 @@
+"""The numba time loop (table NORM, point-contact model; notes in ``solvers.interaction``): the
+tangential point-contact solve of one step [4.25]-[4.31], the end-of-step update of the
+structures [4.13], [4.15] shared with the reference driver, and the loop itself."""
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from ..contact.compliance import table_compliance
+from ..contact.friction import mu_and_slope, mu_rf
+from ..contact.norm import table_force
+from ..green import filter_step
+from ..partitioned import partitioned_step
+from .inputs import FULL_SLIP
+from .result import store
+from .stop import record_window
+
+
+@numba.njit(cache=True)
+def point_contact(b1, b2, c1, c2, F3, s_nodes, mu_nodes, slopes, eps, sigma0):
+    """Tangential point-contact model [4.25]-[4.31] for one step (module notes):
+    s_tau = b_tau + c_tau F_tau, F_tau = -mu_RF(s) F3 s_tau / sqrt(s^2 + eps^2).
+    b (m/s): the known part of the slip; c_tau = A_tau / dt (m/s per N); F3 > 0; eps >= 0
+    (0 needs mu_RF(0) = 0).
+    sigma0: a start value for |s| (the previous step's), ignored unless in (0, |b|).
+    Returns F1, F2, s1, s2, |s|, Newton iterations, bisection fallbacks."""
+    bn = math.hypot(b1, b2)
+    if bn == 0.0 or F3 <= 0.0:
+        return 0.0, 0.0, b1, b2, bn, 0, 0
+    k1 = c1 * F3
+    k2 = c2 * F3
+    e1 = b1 / bn
+    e2 = b2 / bn
+    # scaled unknown x = sigma / |b| in (0, 1]; H(x) = 1/sqrt(e1^2/d1^2 + e2^2/d2^2) - 1, d = D/|b|
+    lo = 0.0
+    hi = 1.0
+    x = sigma0 / bn
+    if not (0.0 < x < 1.0):
+        x = 0.5
+    it = 0
+    nb = 0
+    for it in range(1, 101):
+        sig = x * bn
+        m, dm = mu_and_slope(sig, s_nodes, mu_nodes, slopes)
+        r = math.hypot(sig, eps)
+        g = m * sig / r                                   # mu_RF(s) s / sqrt(s^2 + eps^2)
+        dg = dm * sig / r                                 # d g / d sigma
+        if eps > 0.0:
+            dg += m * (eps / r) * (eps / r) / r
+        d1 = x + k1 * g / bn
+        d2 = x + k2 * g / bn
+        dd1 = 1.0 + k1 * dg
+        dd2 = 1.0 + k2 * dg
+        N = (e1 / d1) ** 2 + (e2 / d2) ** 2
+        H = 1.0 / math.sqrt(N) - 1.0
+        if H == 0.0:
+            break
+        if H > 0.0:
+            hi = x
+        else:
+            lo = x
+        dN = -2.0 * (e1 * e1 * dd1 / (d1 * d1 * d1) + e2 * e2 * dd2 / (d2 * d2 * d2))
+        dH = -0.5 * dN / (N * math.sqrt(N))
+        xn = x - H / dH if dH > 0.0 else -1.0
+        if not (lo < xn < hi):
+            xn = 0.5 * (lo + hi)
+            nb += 1
+        if abs(xn - x) <= 1e-15 or hi - lo <= 1e-15:
+            x = xn
+            break
+        x = xn
+    sig = x * bn
+    m = mu_rf(sig, s_nodes, mu_nodes, slopes)
+    r = math.hypot(sig, eps)
+    q = m / r if r > 0.0 else slopes[0]
+    s1 = b1 / (1.0 + k1 * q)
+    s2 = b2 / (1.0 + k2 * q)
+    return -F3 * q * s1, -F3 * q * s2, s1, s2, math.hypot(s1, s2), it, nb
+
+
+
+@numba.njit(cache=True, inline="always")
+def advance(filt, rc, n, F2, F3, p, win, jw, iw):
+    """End of step n, shared by both drivers: the structures' response to this step's force
+    deviations from p.F_ref (p.kick added at n = 0) -> xi = xi^R - xi^W at step n + 1 (wheel:
+    recursive modal filters ``filt``, the wheel moving by minus their sum [4.13]; rail: moving
+    kernel ``rc`` [4.15]), then the stop rule's window ``win``.  Returns (xi2, xi3, jw, iw, reason)."""
+    d2 = F2 - p.F_ref[1]
+    d3 = F3 - p.F_ref[2]
+    if n == 0:
+        d2 += p.kick[0]
+        d3 += p.kick[1]
+    w2, w3 = filter_step(filt, d2, d3)
+    r2, r3 = partitioned_step(rc, d2, d3)
+    reason = 0
+    if win.nw > 0:
+        jw, iw, reason = record_window(F2, F3, n + 1, p.dt, win, jw, iw)
+    return r2 + w2, r3 + w3, jw, iw, reason
+
+
+@numba.njit(cache=True)
+def run_point(filt, rc, p, tab, rec, win):
+    """The time loop (table NORM, point-contact model), entirely in numba.  filt: the wheel's
+    ModalFilter, rc: the rail's PartitionedConvolver (both advanced in place); p: LoopParams;
+    tab: PointTables; rec: Record and win: Windows (written in place; rec.counters: Newton
+    iterations, max per step, bisections, steps without contact).
+    Returns (steps done, stop reason)."""
+    dt = p.dt
+    v = p.v
+    slip_sign = p.slip_sign
+    xi3_static = p.xi3_static
+    gx = p.gx
+    gy = p.gy
+    eps = p.eps
+    xi3_nodes = tab.xi3_nodes
+    q_nodes = tab.q_nodes
+    A1_nodes = tab.A1_nodes
+    A2_nodes = tab.A2_nodes
+    s_nodes = tab.s_nodes
+    mu_nodes = tab.mu_nodes
+    slopes = tab.slopes
+    counters = rec.counters
+    xi2 = 0.0
+    xi3 = 0.0
+    xi2_old = 0.0
+    u1p = p.u_ref[0]
+    u2p = p.u_ref[1]
+    sig = 0.0
+    mu_top = mu_nodes[mu_nodes.shape[0] - 1]
+    row = np.zeros(8)
+    ngx = gx.shape[0]
+    ngy = gy.shape[0]
+    iw = 0
+    jw = 0
+    reason = 0
+    done = 0
+    for n in range(p.n_steps):
+        gxn = gx[n if n < ngx else ngx - 1]
+        gyn = gy[n if n < ngy else ngy - 1]
+        app = xi3_static - xi3
+        F3 = table_force(app, xi3_nodes, q_nodes)
+        b1 = gxn * v - u1p / dt
+        b2 = gyn * v - u2p / dt + slip_sign * (xi2 - xi2_old) / dt
+        if F3 > 0.0:
+            A1 = table_compliance(app, xi3_nodes, A1_nodes)
+            A2 = table_compliance(app, xi3_nodes, A2_nodes)
+            F1, F2, s1, s2, sig, it, nb = point_contact(b1, b2, A1 / dt, A2 / dt, F3, s_nodes, mu_nodes,
+                                                        slopes, eps, sig)
+            u1p = A1 * F1
+            u2p = A2 * F2
+            counters[0] += it
+            if it > counters[1]:
+                counters[1] = it
+            counters[2] += nb
+            state = 2.0 if mu_rf(sig, s_nodes, mu_nodes, slopes) >= FULL_SLIP * mu_top else 1.0
+        else:                                   # loss of contact: no force, deformation released
+            F1 = 0.0
+            F2 = 0.0
+            F3 = 0.0
+            s1 = b1
+            s2 = b2
+            u1p = 0.0
+            u2p = 0.0
+            state = 0.0
+            counters[3] += 1
+        row[0] = F1
+        row[1] = F2
+        row[2] = F3
+        row[3] = s1
+        row[4] = s2
+        row[5] = xi2
+        row[6] = xi3
+        row[7] = state
+        store(n, row, rec)
+        xi2_old = xi2
+        xi2, xi3, jw, iw, reason = advance(filt, rc, n, F2, F3, p, win, jw, iw)
+        done = n + 1
+        if reason != 0:
+            break
+    return done, reason
+
+

@@ -1,0 +1,113 @@
+"""The reference driver of the time loop (notes in ``solvers.interaction``): the same loop as
+``kernel.run_point`` in Python, with per-step NORM, the literal compliance [4.32]-[4.35] and/or
+Kalker's transient TANG, built from the same njit blocks."""
+from __future__ import annotations
+
+import numpy as np
+
+from ..contact.compliance import contact_compliance, table_compliance
+from ..contact.friction import mu_rf
+from ..contact.norm import NormTable, norm, table_force, table_pressure
+from ..contact.tang import tang_steady, tang_transient
+from .inputs import FULL_SLIP, KALKER_TOL, ContactModel, LoopParams
+from .kernel import advance, point_contact
+from .result import Record, store
+from .stop import Windows
+
+
+def _check(c: ContactModel, p: LoopParams, tangential: str, normal: str, compliance: str):
+    """The NORM table with pressures (None if not needed); errors if c lacks what the models need."""
+    if normal == "norm" or tangential == "kalker" or compliance == "exact":
+        if c.gap is None or c.dx is None or c.dy is None:
+            raise ValueError("the reference drivers need the contact's gap, dx and dy")
+        if abs(c.dx - p.v * p.dt) > 1e-9 * c.dx:
+            raise ValueError(f"the contact grid's dx = {c.dx} must be v dt = {p.v * p.dt} (SPEC 4.1)")
+    if tangential == "kalker" or compliance == "exact":
+        if c.pressure_nodes is None or c.F3_nodes is None:
+            raise ValueError("Kalker's TANG and the exact compliance need the table's pressure fields")
+        return NormTable(c.xi3_nodes, c.F3_nodes, c.q_nodes, c.pressure_nodes, c.pressure_nodes > 0)
+    return None
+
+
+def run_reference(filt, rc, p: LoopParams, c: ContactModel, rec: Record, win: Windows, *, tangential: str,
+                  normal: str, compliance: str, start: str):
+    """The time loop in Python (normal 'table' | 'norm', compliance 'table' | 'exact', tangential
+    'point' | 'kalker'; start 'steady' | 'static'), writing into ``rec`` and ``win`` like
+    ``run_point``.  Returns (steps done, reason, F_ref): with Kalker's TANG and start='steady' the
+    reference forces are TANG's steady ones instead of p.F_ref."""
+    table = _check(c, p, tangential, normal, compliance)
+    n_steps, dt, v, xi3_static, slip_sign, eps, gx, gy, F_ref, u_ref, _ = p
+    counters = rec.counters
+    E, nu = c.E, c.nu
+    mu_top = c.mu_nodes[-1]
+    tang_state = None
+    if tangential == "kalker" and start == "steady":
+        p0 = table_pressure(table, xi3_static) if normal == "table" else norm(c.gap, xi3_static, c.dx, c.dy, E, nu).p
+        tang_state = tang_steady(p0, c.dx, c.dy, v, c.mu, gamma_x=gx[0], gamma_y=gy[0], E=E, nu=nu,
+                                 full_output=False, tol=KALKER_TOL)
+        F_ref = np.array([tang_state.F1, tang_state.F2, F_ref[2]])
+        p = p._replace(F_ref=F_ref)
+    xi2 = xi3 = xi2_old = 0.0
+    u1p, u2p = float(u_ref[0]), float(u_ref[1])
+    sig = 0.0
+    F_prev = (float(F_ref[0]), float(F_ref[1]))
+    nsol = None
+    row = np.zeros(8)
+    iw = jw = reason = done = 0
+    for n in range(n_steps):
+        gxn = gx[min(n, len(gx) - 1)]
+        gyn = gy[min(n, len(gy) - 1)]
+        app = xi3_static - xi3
+        p3 = None
+        if normal == "table":
+            F3 = table_force(app, c.xi3_nodes, c.q_nodes)
+        else:
+            nsol = norm(c.gap, app, c.dx, c.dy, E, nu, warm=nsol if (nsol is not None and nsol.F3 > 0) else None)
+            F3, p3 = nsol.F3, nsol.p
+        dxi2 = slip_sign * (xi2 - xi2_old) / dt
+        if F3 > 0.0:
+            if tangential == "point":
+                if compliance == "table":
+                    A1 = table_compliance(app, c.xi3_nodes, c.A1_nodes)
+                    A2 = table_compliance(app, c.xi3_nodes, c.A2_nodes)
+                else:
+                    if p3 is None:
+                        p3 = table_pressure(table, app)
+                    A1, A2 = contact_compliance(p3, F_prev, c.dx, c.dy, E, nu)
+                b1 = gxn * v - u1p / dt
+                b2 = gyn * v - u2p / dt + dxi2
+                F1, F2, s1, s2, sig, it, nb = point_contact(b1, b2, A1 / dt, A2 / dt, F3, c.s_nodes, c.mu_nodes,
+                                                            c.slopes, eps, sig)
+                u1p, u2p = A1 * F1, A2 * F2
+                counters[0] += it
+                counters[1] = max(counters[1], it)
+                counters[2] += nb
+                state = 2.0 if mu_rf(sig, c.s_nodes, c.mu_nodes, c.slopes) >= FULL_SLIP * mu_top else 1.0
+            else:
+                if p3 is None:
+                    p3 = table_pressure(table, app)
+                tang_state = tang_transient(p3, c.dx, c.dy, v, c.mu, gamma_x=gxn, gamma_y=gyn + dxi2 / v,
+                                            E=E, nu=nu, state=tang_state, full_output=False, tol=KALKER_TOL)
+                F1, F2 = tang_state.F1, tang_state.F2
+                inside = p3 > 0
+                s1 = float(tang_state.s1[inside].mean())
+                s2 = float(tang_state.s2[inside].mean())
+                counters[0] += tang_state.iterations
+                counters[1] = max(counters[1], tang_state.iterations)
+                state = 1.0 if tang_state.stick.any() else 2.0
+            F_prev = (F1, F2)
+        else:
+            F1 = F2 = F3 = 0.0
+            s1, s2 = gxn * v - u1p / dt, gyn * v - u2p / dt + dxi2
+            u1p = u2p = 0.0
+            tang_state = None
+            state = 0.0
+            counters[3] += 1
+        row[:] = (F1, F2, F3, s1, s2, xi2, xi3, state)
+        store(n, row, rec)
+        xi2_old = xi2
+        xi2, xi3, jw, iw, reason = advance(filt, rc, n, float(F2), float(F3), p, win, jw, iw)
+        done = n + 1
+        if reason != 0:
+            break
+    return done, reason, F_ref
