@@ -43,7 +43,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .green import modal_filter
+from .modal_filter import modal_filter
 
 
 class LinearModel(NamedTuple):

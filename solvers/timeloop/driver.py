@@ -10,7 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..contact.compliance import table_compliance
-from ..green import ModalFilter, modal_filter
+from ..modal_filter import ModalFilter, modal_filter
 from ..partitioned import DEFAULT_BLOCK, PartitionedConvolver, partitioned_convolver
 from .inputs import (DEFAULT_KICK, EPS_SLIP, MAX_DURATION, ContactModel, LoopParams, WheelModes, per_step,
                      point_tables, static_approach, steady_forces)

@@ -11,7 +11,7 @@ import numpy as np
 from ..contact.compliance import table_compliance
 from ..contact.friction import mu_and_slope, mu_rf
 from ..contact.norm import table_force
-from ..green import filter_step
+from ..modal_filter import filter_step
 from ..partitioned import partitioned_step
 from .inputs import FULL_SLIP
 from .result import store

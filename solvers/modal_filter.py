@@ -1,0 +1,167 @@
+"""The wheel's modal Green's function (SPEC 3.3, [4.13]) and its exact recursive form, the modal
+filters the time loop advances per step (notes in ``solvers.green``)."""
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numba
+import numpy as np
+
+
+def modal_impulse(t, f_r: float, zeta: float) -> np.ndarray:
+    """h(t) = exp(-sigma t) sinh(mu t) / mu of one mode per unit modal mass
+    (displacement impulse response of x'' + 2 zeta w x' + w^2 x = delta(t)),
+    for any zeta >= 0: exp(-zeta w t) sin(w_d t)/w_d (zeta < 1), t exp(-w t)
+    (zeta = 1), the over-damped pair (zeta > 1)."""
+    t = np.asarray(t, float)
+    w = 2 * np.pi * f_r
+    sig = zeta * w
+    if zeta < 1.0:
+        wd = w * math.sqrt(1.0 - zeta * zeta)
+        return np.exp(-sig * t) * np.sin(wd * t) / wd
+    mu = w * math.sqrt(zeta * zeta - 1.0)
+    x = mu * t
+    small = x < 1e-3
+    out = np.empty_like(t)
+    xs = x[small]
+    out[small] = t[small] * np.exp(-sig * t[small]) * (1.0 + xs * xs / 6.0 + xs ** 4 / 120.0)
+    tb = t[~small]
+    out[~small] = (np.exp((mu - sig) * tb) - np.exp(-(mu + sig) * tb)) / (2.0 * mu)
+    return out
+
+
+def modal_kernel(n_lags: int, dt: float, f_r, modal_mass, zeta, phi) -> np.ndarray:
+    """The sampled modal impulse response g[k] = dt sum_r phi_r phi_r^T h_r(k dt)/m_r,
+    k = 0..n_lags-1, (n_lags, 2, 2) in m/N; phi (M, 2) = (Phi_2, Phi_3) at the contact
+    point.  This is the kernel ``ModalFilter`` reproduces exactly (g[0] = 0)."""
+    f_r, modal_mass, zeta = (np.atleast_1d(np.asarray(a, float)) for a in (f_r, modal_mass, zeta))
+    phi = np.asarray(phi, float).reshape(len(f_r), 2)
+    t = np.arange(n_lags) * dt
+    g = np.zeros((n_lags, 2, 2))
+    for r in range(len(f_r)):
+        h = dt * modal_impulse(t, f_r[r], zeta[r]) / modal_mass[r]
+        g += h[:, None, None] * np.outer(phi[r], phi[r])[None]
+    return g
+
+
+class ModalFilter(NamedTuple):
+    """Exact recursive form of the wheel's modal kernel (see the module notes).
+    Coefficients (per mode r): kind 0 (zeta < 1, complex one-pole) or 1 (zeta >= 1,
+    real poles); z = pole / first pole, p2 = second pole; w_in (M, 2): modal force
+    P_r = w_in[r] . (F2, F3); w_out (M, 2): xi_i += w_out[r, i] * y_r.  State: q, a (kind 1).
+    The time loop runs the kind-0 modes from real, mode-contiguous copies (a loop without
+    branches or complex types, which the compiler vectorises): u_coef (6, M0) = Re z, Im z,
+    w_in[:, 0], w_in[:, 1], w_out[:, 0], w_out[:, 1]; their state u_state (2, M0) = Re q, Im q;
+    ``over`` (M1,) the indices of the kind-1 modes.
+    Pass the whole tuple to the njit functions (``filter_step``,
+    ``filter_history``) from inside a numba time loop."""
+    kind: np.ndarray
+    z: np.ndarray
+    p2: np.ndarray
+    w_in: np.ndarray
+    w_out: np.ndarray
+    q: np.ndarray
+    a: np.ndarray
+    u_coef: np.ndarray
+    u_state: np.ndarray
+    over: np.ndarray
+
+    def step(self, F2: float, F3: float) -> tuple[float, float]:
+        """Record the force at the current step; return (xi2, xi3) at the next step."""
+        return filter_step(self, F2, F3)
+
+    def reset(self) -> None:
+        self.q[:] = 0.0
+        self.a[:] = 0.0
+        self.u_state[:] = 0.0
+
+    def copy(self) -> "ModalFilter":
+        return ModalFilter(*(np.array(x, copy=True) for x in self))
+
+    def response(self, F: np.ndarray) -> np.ndarray:
+        """Whole history from rest (the state is not touched): xi (nt, 2)."""
+        return filter_history(self.copy_reset(), np.ascontiguousarray(F, dtype=float))
+
+    def copy_reset(self) -> "ModalFilter":
+        c = self.copy()
+        c.reset()
+        return c
+
+
+def modal_filter(dt: float, f_r, modal_mass, zeta, phi) -> ModalFilter:
+    """Build the recursive modal filters of the kernel ``modal_kernel(.., dt, f_r,
+    modal_mass, zeta, phi)``: f_r (M,) Hz, modal_mass (M,) kg, zeta (M,) (any
+    value >= 0; zeta >= 1 gives the critically / over-damped forms), phi (M, 2) =
+    (Phi_2, Phi_3) at the contact point.  State at rest."""
+    f_r, modal_mass, zeta = (np.atleast_1d(np.asarray(a, float)) for a in (f_r, modal_mass, zeta))
+    phi = np.asarray(phi, float).reshape(len(f_r), 2)
+    M = len(f_r)
+    if np.any(zeta < 0) or np.any(f_r <= 0) or np.any(modal_mass <= 0):
+        raise ValueError("modal_filter needs f_r > 0, modal_mass > 0, zeta >= 0")
+    kind = np.zeros(M, np.int64)
+    z = np.zeros(M, complex)
+    p2 = np.zeros(M, complex)
+    gain = np.zeros(M)
+    for r in range(M):
+        w = 2 * np.pi * f_r[r]
+        sig = zeta[r] * w
+        if zeta[r] < 1.0:
+            wd = w * math.sqrt(1.0 - zeta[r] ** 2)
+            z[r] = math.exp(-sig * dt) * complex(math.cos(wd * dt), math.sin(wd * dt))
+            gain[r] = dt / wd
+        else:
+            kind[r] = 1
+            mu = w * math.sqrt(zeta[r] ** 2 - 1.0)
+            z[r] = math.exp((mu - sig) * dt)
+            p2[r] = math.exp(-(mu + sig) * dt)
+            x = mu * dt
+            shc = 1.0 + x * x / 6.0 + x ** 4 / 120.0 if x < 1e-3 else math.sinh(x) / x
+            gain[r] = dt * dt * math.exp(-sig * dt) * shc
+    w_in = np.ascontiguousarray(phi)
+    w_out = np.ascontiguousarray(phi * (gain / modal_mass)[:, None])
+    under = kind == 0
+    u_coef = np.ascontiguousarray(np.vstack([z.real, z.imag, w_in.T, w_out.T])[:, under])
+    return ModalFilter(kind, z, p2, w_in, w_out, np.zeros(M, complex), np.zeros(M, complex), u_coef,
+                       np.zeros((2, int(under.sum()))), np.flatnonzero(~under).astype(np.int64))
+
+
+@numba.njit(cache=True)
+def filter_step(filt, F2, F3):
+    """njit: push the force (F2, F3) of step n into the modal filters, return the
+    displacement (xi2, xi3) at step n + 1 (forces up to step n only, g[0] excluded)."""
+    kind, z, p2, w_in, w_out, q, a, uc, us, over = filt
+    x2 = 0.0
+    x3 = 0.0
+    for j in range(uc.shape[1]):                    # zeta < 1: q <- z (q + P), y = Im q
+        ur = us[0, j] + uc[2, j] * F2 + uc[3, j] * F3
+        ui = us[1, j]
+        nr = uc[0, j] * ur - uc[1, j] * ui
+        ni = uc[0, j] * ui + uc[1, j] * ur
+        us[0, j] = nr
+        us[1, j] = ni
+        x2 += uc[4, j] * ni
+        x3 += uc[5, j] * ni
+    for i in range(over.shape[0]):                  # zeta >= 1: divided-difference states
+        r = over[i]
+        P = w_in[r, 0] * F2 + w_in[r, 1] * F3
+        v = P + z[r] * q[r] + a[r]
+        a[r] = p2[r] * (a[r] + P)
+        q[r] = v
+        y = v.real
+        x2 += w_out[r, 0] * y
+        x3 += w_out[r, 1] * y
+    return x2, x3
+
+
+@numba.njit(cache=True)
+def filter_history(filt, F):
+    """njit: xi[n] = sum_{k>=1} g[k] F[n-k] for a whole force history F (nt, 2),
+    starting from the filter's current state (at rest: xi[0] = 0)."""
+    nt = F.shape[0]
+    xi = np.zeros((nt, 2))
+    for n in range(nt - 1):
+        x2, x3 = filter_step(filt, F[n, 0], F[n, 1])
+        xi[n + 1, 0] = x2
+        xi[n + 1, 1] = x3
+    return xi
