@@ -26,13 +26,13 @@ export OMP_NUM_THREADS ?= 1
 GEOMETRY_SRC := geometry/wheel.py geometry/outline.py geometry/mesher.py
 MODES_SRC    := solvers/axisym.py solvers/classify.py solvers/wheelset.py pipeline/wheel_stage.py
 SHAPES_SRC   := postprocess/mode_shapes.py
-RAIL_SRC     := geometry/rail.py geometry/mesher.py solvers/waveguide.py solvers/rail_response.py pipeline/rail_stage.py
+RAIL_SRC     := geometry/rail.py geometry/rail_mesh.py geometry/mesher.py solvers/waveguide.py $(wildcard solvers/wfe/*.py) solvers/rail_model.py solvers/rail_reduced.py solvers/rail_response.py pipeline/rail_model.py pipeline/rail_stage.py
 CONTACT_SRC  := $(wildcard solvers/contact/*.py) pipeline/contact_stage.py geometry/wheel.py geometry/rail.py
-GREENS_SRC   := solvers/green.py solvers/receptance.py solvers/rail_response.py solvers/moving_kernel.py pipeline/rail_kernel.py pipeline/greens_stage.py
-SIM_SRC      := solvers/interaction.py solvers/green.py solvers/partitioned.py pipeline/simulate_stage.py postprocess/spectra.py
-STAB_SRC     := solvers/stability.py solvers/interaction.py solvers/green.py solvers/partitioned.py pipeline/stability_stage.py
-RADIATE_SRC  := postprocess/radiation.py postprocess/force_radiation.py postprocess/spectra.py solvers/receptance.py geometry/wheel.py pipeline/radiate_stage.py
-LISTEN_SRC   := postprocess/listener.py postprocess/audio.py postprocess/spectra.py pipeline/listen_stage.py pipeline/listen_plot.py
+GREENS_SRC   := solvers/green.py solvers/kropp.py solvers/band_fit.py solvers/receptance.py solvers/rail_response.py solvers/moving_kernel.py pipeline/rail_kernel.py pipeline/greens_stage.py
+SIM_SRC      := solvers/interaction.py $(wildcard solvers/timeloop/*.py) solvers/modal_filter.py solvers/partitioned.py solvers/spectra.py pipeline/simulate_stage.py postprocess/spectra.py
+STAB_SRC     := solvers/stability.py solvers/interaction.py $(wildcard solvers/timeloop/*.py) solvers/modal_filter.py solvers/partitioned.py pipeline/stability_stage.py
+RADIATE_SRC  := postprocess/radiation.py postprocess/force_radiation.py postprocess/spectra.py solvers/spectra.py solvers/receptance.py geometry/wheel.py pipeline/radiate_stage.py
+LISTEN_SRC   := postprocess/listener.py postprocess/audio.py postprocess/spectra.py solvers/spectra.py pipeline/listen_stage.py pipeline/listen_plot.py
 
 .DEFAULT_GOAL := all
 .PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate stability stability-map listen report study check clean distclean FORCE

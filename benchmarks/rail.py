@@ -28,13 +28,14 @@ import json, sys, time
 t0 = time.perf_counter()
 sys.path.insert(0, {root!r})
 import numpy as np
-from geometry.rail import load_rail, mesh_rail
+from geometry.rail_mesh import mesh_rail
+from pipeline.rail_model import build_rail_model, load_rail
 from solvers import waveguide as wg, rail_response as rr
 t_import = time.perf_counter() - t0
 T = {{"import": t_import}}
 p = load_rail({root!r} + "/geometry/rails/{rail}.toml")
 t = time.perf_counter(); mesh_rail(p, {msh!r}); T["mesh"] = time.perf_counter() - t
-t = time.perf_counter(); model = rr.build_rail_model(p, {msh!r}); T["model (assembly, pad, torsion, basis waves)"] = time.perf_counter() - t
+t = time.perf_counter(); model = build_rail_model(p, {msh!r}); T["model (assembly, pad, torsion, basis waves)"] = time.perf_counter() - t
 zc = model.props["torsion"]["z_centroid"]
 t = time.perf_counter()
 ks = np.linspace(0.0, 30.0, 31)

@@ -35,8 +35,10 @@ log = logging.getLogger("pipeline.greens")
 
 KIND = "rail-moving-kernel"
 # the code the kernel's numbers depend on (hashed into the key)
-CODE = ["solvers/waveguide.py", "solvers/rail_response.py", "solvers/green.py", "solvers/moving_kernel.py",
-        "geometry/rail.py", "pipeline/rail_kernel.py"]
+CODE = ["solvers/waveguide.py", "solvers/wfe/assembly.py", "solvers/wfe/family.py", "solvers/wfe/section.py",
+        "solvers/wfe/waves.py", "solvers/rail_model.py", "solvers/rail_reduced.py", "solvers/rail_response.py",
+        "solvers/green.py", "solvers/kropp.py", "solvers/band_fit.py", "solvers/moving_kernel.py", "geometry/rail.py",
+        "geometry/rail_mesh.py", "pipeline/rail_kernel.py", "pipeline/rail_model.py"]
 
 
 def kernel_config(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, grid: dict) -> dict:
@@ -104,7 +106,7 @@ def build_kernel(pr: dict, y_r: float, v: float, dt: float, grid: dict, taper) -
     the point receptance at head point y_r >= 0 (module notes)."""
     from solvers.green import decayed, frequency_grid, green_from_receptance
     from solvers.moving_kernel import moving_green_waves
-    from solvers.rail_response import build_rail_model
+    from .rail_model import build_rail_model
 
     n_t, n_lags = int(grid["n_t"]), int(grid["n_lags"])
     t0 = time.perf_counter()

@@ -35,8 +35,9 @@ def load_rail_params(name: str) -> tuple[dict, str]:
 
 
 def run_rail(name: str) -> dict:
-    from geometry.rail import mesh_rail
-    from solvers.rail_response import build_rail_model, stage_arrays
+    from geometry.rail_mesh import mesh_rail
+
+    from .rail_model import build_rail_model, stage_arrays
 
     p, _ = load_rail_params(name)
     out = paths.rail_dir(name)

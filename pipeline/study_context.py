@@ -20,7 +20,8 @@ from . import artifacts, paths
 from .config import config_hash
 
 # the code a study row depends on (hashed into its inputs); missing files are skipped
-CODE = ["solvers/interaction.py", "solvers/green.py", "solvers/partitioned.py", "solvers/study.py", "postprocess/spectra.py",
+CODE = ["solvers/interaction.py", "solvers/timeloop/*.py", "solvers/green.py", "solvers/modal_filter.py",
+        "solvers/partitioned.py", "solvers/study.py", "solvers/spectra.py", "postprocess/spectra.py",
         "pipeline/study_worker.py", "solvers/contact/*.py", "postprocess/radiation.py",
         "postprocess/force_radiation.py", "pipeline/radiate_stage.py", "solvers/receptance.py"]
 

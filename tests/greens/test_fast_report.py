@@ -36,7 +36,8 @@ def kernel_section() -> tuple[str, np.ndarray]:
     from pipeline.rail_stage import load_rail_params
     from solvers.green import frequency_grid, moving_green
     from solvers.moving_kernel import moving_green_waves
-    from solvers.rail_response import build_rail_model, evaluate_table
+    from pipeline.rail_model import build_rail_model
+    from solvers.rail_response import evaluate_table
 
     dt, v, y = 36e-6, 50 / 3.6, 0.012
     pr, _ = load_rail_params("bv50")

@@ -16,7 +16,7 @@ atexit.register(shutil.rmtree, _TMP, ignore_errors=True)
 
 
 def rail_params(name: str = "bv50", mesh_scale: float = 1.0) -> dict:
-    from geometry.rail import load_rail
+    from pipeline.rail_model import load_rail
 
     p = load_rail(RAILS / f"{name}.toml")
     if mesh_scale != 1.0:
@@ -28,7 +28,7 @@ def rail_params(name: str = "bv50", mesh_scale: float = 1.0) -> dict:
 
 @functools.lru_cache(maxsize=None)
 def mesh_path(name: str = "bv50", mesh_scale: float = 1.0) -> str:
-    from geometry.rail import mesh_rail
+    from geometry.rail_mesh import mesh_rail
 
     path = _TMP / f"{name}_{mesh_scale:g}.msh"
     mesh_rail(rail_params(name, mesh_scale), str(path))
@@ -51,7 +51,7 @@ def assembled(name: str = "bv50", mesh_scale: float = 1.0):
 
 @functools.lru_cache(maxsize=None)
 def rail_model(name: str = "bv50", mesh_scale: float = 1.0):
-    from solvers.rail_response import build_rail_model
+    from pipeline.rail_model import build_rail_model
 
     return build_rail_model(rail_params(name, mesh_scale), mesh_path(name, mesh_scale))
 

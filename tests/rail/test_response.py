@@ -189,10 +189,12 @@ def test_decay_rates_plausible():
 
 
 def test_stage_arrays_consistent():
+    from pipeline.rail_model import stage_arrays
+
     model = rail_model("bv50")
     f = np.array([60.0, 700.0, 3000.0])
     x = np.array([0.0, 0.4, 3.0])
-    A = rr.stage_arrays(model, f, x, ks=np.array([0.0, 2.0, 10.0]), decay_freqs=f)
+    A = stage_arrays(model, f, x, ks=np.array([0.0, 2.0, 10.0]), decay_freqs=f)
     assert A["G"].shape == (3, 3, 3, 2, 2)
     # the wave table reproduces G at any distance
     G = np.einsum("fnpij,fnx->pxfij", A["wave_a"], np.exp(-1j * A["wave_k"][:, :, None] * x[None, None, :]))
