@@ -1,0 +1,238 @@
+"""Element kernels of TANG's Newton solver in numba (notes in ``solvers.contact.tang``): compact
+element vectors <-> grid arrays, the Newton matrix's rows, the preconditioner's two halves, the
+fused CG steps, and the stick/slip geometry and set updates."""
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+
+@numba.njit(cache=True)
+def scatter(ix, iy, p, out):
+    """out (2, nx, ny) <- 0, p (N, 2) on the elements."""
+    out[:] = 0.0
+    for k in range(ix.shape[0]):
+        out[0, ix[k], iy[k]] = p[k, 0]
+        out[1, ix[k], iy[k]] = p[k, 1]
+
+
+@numba.njit(cache=True)
+def gather_slip(ix, iy, u, steady, r, s):
+    """s (N, 2) <- r + M p from the displacements u (2, nx + 1, ny) of p."""
+    for k in range(ix.shape[0]):
+        i, j = ix[k], iy[k]
+        for a in range(2):
+            m = u[a, i, j]
+            if steady:
+                m -= u[a, i + 1, j]
+            s[k, a] = r[k, a] + m
+
+
+@numba.njit(cache=True)
+def lift(ix, iy, stick, t, x, out):
+    """Newton variables x (N, 2) -> traction increments on the grid: stick (x0, x1), slip x0 t."""
+    out[:] = 0.0
+    for k in range(ix.shape[0]):
+        if stick[k]:
+            out[0, ix[k], iy[k]] = x[k, 0]
+            out[1, ix[k], iy[k]] = x[k, 1]
+        else:
+            out[0, ix[k], iy[k]] = x[k, 0] * t[k, 0]
+            out[1, ix[k], iy[k]] = x[k, 0] * t[k, 1]
+
+
+@numba.njit(cache=True)
+def jacobian_rows(ix, iy, stick, t, D, u, steady, scale, x, y):
+    """y = J x (scaled by 1/scale): stick rows M dp, slip rows t . M dp + D x0 (dummy 0)."""
+    for k in range(ix.shape[0]):
+        i, j = ix[k], iy[k]
+        m0, m1 = u[0, i, j], u[1, i, j]
+        if steady:
+            m0 -= u[0, i + 1, j]
+            m1 -= u[1, i + 1, j]
+        if stick[k]:
+            y[k, 0] = m0 / scale
+            y[k, 1] = m1 / scale
+        else:
+            y[k, 0] = (t[k, 0] * m0 + t[k, 1] * m1) / scale + D[k] * x[k, 0]
+            y[k, 1] = 0.0
+
+
+@numba.njit(cache=True)
+def precondition_in(ix, iy, stick, t, sc, x, steady, slip_fft, out):
+    """Fields of the preconditioner's transform: 0, 1 the stick part of x (steady: summed along x
+    from the leading edge, the exact inverse of the transport difference I - shift on each grid
+    line); 2, 3 (slip_fft) the slip part lifted along the tangents, scaled by sc."""
+    out[:] = 0.0
+    for k in range(ix.shape[0]):
+        if stick[k]:
+            out[0, ix[k], iy[k]] = x[k, 0]
+            out[1, ix[k], iy[k]] = x[k, 1]
+        elif slip_fft:
+            out[2, ix[k], iy[k]] = sc[k] * x[k, 0] * t[k, 0]
+            out[3, ix[k], iy[k]] = sc[k] * x[k, 0] * t[k, 1]
+    if steady:
+        nx = out.shape[1]
+        for a in range(2):
+            for j in range(out.shape[2]):
+                for i in range(nx - 2, -1, -1):
+                    out[a, i, j] += out[a, i + 1, j]
+
+
+@numba.njit(cache=True)
+def precondition_out(ix, iy, stick, t, sc, D, mdiag, z, slip_fft, x, y):
+    """y = P^-1 x from the transformed fields z: stick z[0:2]; slip sc t . z[2:4] (slip_fft) or
+    the diagonal 1 / (t' M_II t + D) (scaled units)."""
+    for k in range(ix.shape[0]):
+        i, j = ix[k], iy[k]
+        if stick[k]:
+            y[k, 0] = z[0, i, j]
+            y[k, 1] = z[1, i, j]
+        else:
+            if slip_fft:
+                y[k, 0] = sc[k] * (t[k, 0] * z[2, i, j] + t[k, 1] * z[3, i, j])
+            else:
+                m = t[k, 0] * t[k, 0] * mdiag[0] + t[k, 1] * t[k, 1] * mdiag[1]
+                y[k, 0] = x[k, 0] / (m + D[k])
+            y[k, 1] = 0.0
+
+
+@numba.njit(cache=True)
+def slip_scaling(stick, t, D, mdiag, sc):
+    """Median of D over the slip elements and the symmetric scaling sqrt((m + dbar) / (m + D))."""
+    n = 0
+    for k in range(stick.shape[0]):
+        if not stick[k]:
+            n += 1
+    if n == 0:
+        return 0.0
+    vals = np.empty(n)
+    n = 0
+    for k in range(stick.shape[0]):
+        if not stick[k]:
+            vals[n] = D[k]
+            n += 1
+    dbar = np.median(vals)
+    for k in range(stick.shape[0]):
+        if not stick[k]:
+            m = t[k, 0] * t[k, 0] * mdiag[0] + t[k, 1] * t[k, 1] * mdiag[1]
+            sc[k] = math.sqrt((m + dbar) / (m + D[k]))
+    return dbar
+
+
+@numba.njit(cache=True)
+def pcg_direction(ix, iy, stick, t, sc, D, mdiag, Z, slip_fft, r, z, rz_old, d, lifted):
+    """PCG: z = P^-1 r from the preconditioner's transform Z, rz = r . z, d = z + (rz / rz_old) d
+    (d = z when rz_old = 0) and d lifted onto the grid for the next product.  Returns rz."""
+    precondition_out(ix, iy, stick, t, sc, D, mdiag, Z, slip_fft, r, z)
+    rz = 0.0
+    for k in range(r.shape[0]):
+        rz += r[k, 0] * z[k, 0] + r[k, 1] * z[k, 1]
+    beta = rz / rz_old if rz_old != 0.0 else 0.0
+    for k in range(r.shape[0]):
+        d[k, 0] = z[k, 0] + beta * d[k, 0]
+        d[k, 1] = z[k, 1] + beta * d[k, 1]
+    lift(ix, iy, stick, t, d, lifted)
+    return rz
+
+
+@numba.njit(cache=True)
+def pcg_update(ix, iy, stick, t, D, U, steady, scale, d, q, rz, x, r, sc, slip_fft, prec_in):
+    """PCG: q = J d from the displacements U of the lifted d, alpha = rz / (d . q), x += alpha d,
+    r -= alpha q, and r prepared for the preconditioner.  Returns (|r|^2, d . q)."""
+    jacobian_rows(ix, iy, stick, t, D, U, steady, scale, d, q)
+    dq = 0.0
+    for k in range(d.shape[0]):
+        dq += d[k, 0] * q[k, 0] + d[k, 1] * q[k, 1]
+    if dq <= 0.0:
+        return 0.0, dq
+    alpha = rz / dq
+    rr = 0.0
+    for k in range(d.shape[0]):
+        for a in range(2):
+            x[k, a] += alpha * d[k, a]
+            r[k, a] -= alpha * q[k, a]
+            rr += r[k, a] * r[k, a]
+    precondition_in(ix, iy, stick, t, sc, r, steady, slip_fft, prec_in)
+    return rr, dq
+
+
+@numba.njit(cache=True)
+def residual(stick, t, s, R):
+    """Newton residual: stick s, slip (t . s, 0).  Returns its max norm."""
+    big = 0.0
+    for k in range(s.shape[0]):
+        if stick[k]:
+            R[k, 0], R[k, 1] = s[k, 0], s[k, 1]
+        else:
+            R[k, 0] = t[k, 0] * s[k, 0] + t[k, 1] * s[k, 1]
+            R[k, 1] = 0.0
+        big = max(big, abs(R[k, 0]), abs(R[k, 1]))
+    return big
+
+
+@numba.njit(cache=True)
+def slip_geometry(stick, theta, g, s, p, t, D, scale):
+    """Tractions of slip elements on their circle g (cos, sin)(theta); tangents t (all elements,
+    from the traction direction); D = max(-s . n, 0) / g / scale on slip (the turning term)."""
+    for k in range(theta.shape[0]):
+        if stick[k]:
+            th = math.atan2(p[k, 1], p[k, 0])
+            D[k] = 0.0
+        else:
+            th = theta[k]
+        c, sn = math.cos(th), math.sin(th)
+        t[k, 0], t[k, 1] = -sn, c
+        if not stick[k]:
+            p[k, 0], p[k, 1] = g[k] * c, g[k] * sn
+            D[k] = max(-(s[k, 0] * c + s[k, 1] * sn), 0.0) / max(g[k], 1e-300) / scale
+
+
+@numba.njit(cache=True)
+def apply_step(stick, theta, g, dz, p, clip):
+    """p += dz on stick, theta += dz0 / g (clipped) on slip; returns the largest change [Pa]."""
+    change = 0.0
+    for k in range(stick.shape[0]):
+        if stick[k]:
+            p[k, 0] += dz[k, 0]
+            p[k, 1] += dz[k, 1]
+            change = max(change, abs(dz[k, 0]), abs(dz[k, 1]))
+        else:
+            dth = dz[k, 0] / max(g[k], 1e-300)
+            if dth > clip:
+                dth = clip
+            elif dth < -clip:
+                dth = -clip
+            theta[k] += dth
+            p[k, 0] = g[k] * math.cos(theta[k])
+            p[k, 1] = g[k] * math.sin(theta[k])
+            change = max(change, g[k] * abs(dth))
+    return change
+
+
+@numba.njit(cache=True)
+def update_sets(stick, theta, g, p, s, rel):
+    """Kalker's set update: stick elements beyond the bound -> slip (projected onto the bound);
+    slip elements whose slip points along the traction -> stick.  Returns (moved to slip,
+    moved to stick)."""
+    s_scale = 1e-300
+    for k in range(stick.shape[0]):
+        s_scale = max(s_scale, abs(s[k, 0]), abs(s[k, 1]))
+    n_slip = 0
+    n_stick = 0
+    for k in range(stick.shape[0]):
+        if stick[k]:
+            a = math.hypot(p[k, 0], p[k, 1])
+            if a > g[k] * (1.0 + rel):
+                stick[k] = False
+                theta[k] = math.atan2(p[k, 1], p[k, 0])
+                p[k, 0] *= g[k] / a
+                p[k, 1] *= g[k] / a
+                n_slip += 1
+        else:
+            if s[k, 0] * p[k, 0] + s[k, 1] * p[k, 1] > rel * s_scale * g[k]:
+                stick[k] = True
+                n_stick += 1
+    return n_slip, n_stick

@@ -1,0 +1,250 @@
+"""Kalker's active-set Newton method for the Coulomb problem of TANG (notes in
+``solvers.contact.tang``), with its matrix-free Krylov solvers (restarted GMRES, fused CG)."""
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+import numba
+import numpy as np
+
+from .tang_kernels import (apply_step, gather_slip, jacobian_rows, lift, pcg_direction, pcg_update,
+                           precondition_in, precondition_out, residual, scatter, slip_geometry, slip_scaling,
+                           update_sets)
+from .tang_operator import TangentialOperator, shifted_inverse
+from .tang_state import QUADRATIC, TOL
+
+
+# ----------------------------------------------------------------------------------------------
+# Krylov solvers (matrix-free, preconditioned)
+# ----------------------------------------------------------------------------------------------
+
+@numba.njit(cache=True)
+def _givens(h, hnext, cs, sn, e, k):
+    """GMRES: apply the previous Givens rotations to column h (k + 1), make the new one that
+    zeroes hnext, and rotate the right-hand side e."""
+    for j in range(k):
+        a, b = h[j], h[j + 1]
+        h[j] = cs[j] * a + sn[j] * b
+        h[j + 1] = -sn[j] * a + cs[j] * b
+    den = math.hypot(h[k], hnext)
+    if den > 0.0:
+        cs[k], sn[k] = h[k] / den, hnext / den
+    else:
+        cs[k], sn[k] = 1.0, 0.0
+    h[k] = den
+    e[k + 1] = -sn[k] * e[k]
+    e[k] = cs[k] * e[k]
+
+
+def _gmres(A, P, b, rtol, kmax, restarts=3):
+    """Right-preconditioned restarted GMRES (classical Gram-Schmidt, repeated when it cancels;
+    Givens rotations): x with |b - A x| <= rtol |b|.  Returns x, steps (operator applications)."""
+    shape = b.shape
+    n = b.size
+    bflat = b.ravel()
+    bn = float(np.linalg.norm(bflat))
+    x = np.zeros(n)
+    if bn == 0.0:
+        return x.reshape(shape), 0
+    steps = 0
+    r = bflat.copy()
+    V = np.empty((kmax + 1, n))
+    Z = np.empty((kmax, n))
+    H = np.zeros((kmax + 1, kmax))
+    for _ in range(restarts + 1):
+        beta = float(np.linalg.norm(r))
+        if beta <= rtol * bn:
+            break
+        cs, sn = np.zeros(kmax), np.zeros(kmax)
+        e = np.zeros(kmax + 1)
+        e[0] = beta
+        V[0] = r / beta
+        k_used = 0
+        for k in range(kmax):
+            Z[k] = P(V[k].reshape(shape)).ravel()
+            w = A(Z[k].reshape(shape)).ravel()
+            steps += 1
+            Vk = V[: k + 1]
+            wn = float(np.linalg.norm(w))
+            h = Vk @ w
+            w -= h @ Vk
+            hnext = float(np.linalg.norm(w))
+            if hnext < 0.5 * wn:         # cancellation: re-orthogonalise (CGS2, Kahan-Parlett)
+                h2 = Vk @ w
+                w -= h2 @ Vk
+                h += h2
+                hnext = float(np.linalg.norm(w))
+            _givens(h, hnext, cs, sn, e, k)
+            H[: k + 1, k] = h
+            k_used = k + 1
+            if abs(e[k + 1]) <= rtol * bn or hnext == 0.0:
+                break
+            V[k + 1] = w / hnext
+        y = np.zeros(k_used)
+        for i in range(k_used - 1, -1, -1):
+            y[i] = (e[i] - np.dot(H[i, i + 1:k_used], y[i + 1:k_used])) / H[i, i]
+        x += y @ Z[:k_used]
+        if abs(e[k_used]) > rtol * bn:   # not converged in this cycle: true residual, restart
+            r = bflat - A(x.reshape(shape)).ravel()
+            steps += 1
+        else:
+            break
+    return x.reshape(shape), steps
+
+
+# ----------------------------------------------------------------------------------------------
+# the Coulomb solver
+# ----------------------------------------------------------------------------------------------
+
+class CoulombResult(NamedTuple):
+    p: np.ndarray           # (N, 2) tractions
+    s: np.ndarray           # (N, 2) slip [displacement per step], 0 on stick
+    stick: np.ndarray       # (N,) bool
+    u: np.ndarray           # (2, nx + 1, ny) displacements of the final tractions (grid + one row ahead)
+    newton: int
+    krylov: int
+    converged: bool
+
+
+def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: bool, tol=TOL,
+                  max_iter=200, warm=False, u_start=None) -> CoulombResult:
+    """Kalker's active-set Newton solver for s = r + M p on the contact elements (ix, iy) of the
+    operator's grid (r, p: (N, 2) [m per step, Pa]; g = mu p3 (N,)), per element: stick s = 0,
+    |p| <= g, or slip |p| = g, p = -g s/|s|.  M = A (transient) or A - A(x + dx) (steady).
+    `p`, `stick`: start values (a previous solution, or zeros and all-stick).  Stops when no
+    element changes set and the Newton step is below tol times the traction level
+    (max(|p|)).  `warm`: the start is a previous solution (its sets are trusted for the first
+    step); `u_start` (2, nx, ny): transient only, the displacements of the start tractions if
+    known (a prediction: they start the first Newton step without a product).  Returns a
+    CoulombResult."""
+    ix = np.ascontiguousarray(ix, dtype=np.int64)
+    iy = np.ascontiguousarray(iy, dtype=np.int64)
+    N = ix.shape[0]
+    r = np.ascontiguousarray(r, dtype=float).reshape(N, 2)
+    g = np.ascontiguousarray(g, dtype=float)
+    p = np.array(p, dtype=float).reshape(N, 2)
+    stick = np.array(stick, dtype=bool)
+    bufs = op.buffers
+    grid = bufs.conv_in                       # the FFT input arrays, filled in place
+    scale = op.scale
+    mdiag = op.a0 - op.a1 if steady else op.a0.copy()
+    mdiag_s = mdiag / scale
+    theta = np.arctan2(p[:, 1], p[:, 0])
+    t = np.zeros((N, 2))
+    D = np.zeros(N)
+    s = np.zeros((N, 2))
+    R = np.zeros((N, 2))
+    # start: slip elements on their circle, stick elements inside their bound
+    p_given = p.copy() if u_start is not None else None
+    slip_geometry(stick, theta, g, s, p, t, D, scale)
+    over = stick & (np.hypot(p[:, 0], p[:, 1]) > g)
+    if over.any():
+        p[over] *= (g[over] / np.hypot(p[over, 0], p[over, 1]))[:, None]
+    if p_given is not None:       # the predicted displacements hold for the start only if it was kept
+        level = max(float(np.abs(p).max(initial=0.0)), 1e-300)
+        if float(np.abs(p - p_given).max(initial=0.0)) > 1e-3 * math.sqrt(tol / QUADRATIC) * level:
+            u_start = None
+
+    def slip_of(pp):
+        scatter(ix, iy, pp, grid)
+        u = op.displacements(grid)
+        gather_slip(ix, iy, u, steady, r, s)
+        return u
+
+    def J(x):
+        lift(ix, iy, stick, t, x, grid)
+        u = op.displacements(grid)
+        y = np.empty_like(x)
+        jacobian_rows(ix, iy, stick, t, D, u, steady, scale, x, y)
+        return y
+
+    grid4 = bufs.prec_in
+    sc = np.ones(N)
+    inv_slip = [None]
+    inv_stick = [op.inv]
+    slip_fft = not steady
+
+    def Pinv(x):
+        four = slip_fft and inv_slip[0] is not None
+        precondition_in(ix, iy, stick, t, sc, x, steady, four, grid4)
+        z = op.precondition(grid4, inv_stick[0], inv_slip[0] if four else None)
+        y = np.empty_like(x)
+        precondition_out(ix, iy, stick, t, sc, D, mdiag_s, z, four, x, y)
+        return y
+
+    q_vec, z_vec, d_vec = np.zeros((N, 2)), np.zeros((N, 2)), np.zeros((N, 2))
+
+    def pcg(b, rtol, kmax):
+        """J x = b by preconditioned CG (transient: J symmetric positive definite), fused kernels."""
+        x = np.zeros((N, 2))
+        rv = b.copy()
+        bn2 = float((b * b).sum())
+        if bn2 == 0.0:
+            return x, 0
+        four = inv_slip[0] is not None
+        precondition_in(ix, iy, stick, t, sc, rv, False, four, grid4)
+        Z = op.precondition(grid4, inv_stick[0], inv_slip[0])
+        rz = pcg_direction(ix, iy, stick, t, sc, D, mdiag_s, Z, four, rv, z_vec, 0.0, d_vec, grid)
+        for k in range(1, kmax + 1):
+            U = op.displacements(grid)
+            rr, dq = pcg_update(ix, iy, stick, t, D, U, False, scale, d_vec, q_vec, rz, x, rv, sc, four,
+                                 grid4)
+            if dq <= 0.0 or rr <= rtol * rtol * bn2:
+                return x, k
+            Z = op.precondition(grid4, inv_stick[0], inv_slip[0])
+            rz = pcg_direction(ix, iy, stick, t, sc, D, mdiag_s, Z, four, rv, z_vec, rz, d_vec, grid)
+        return x, kmax
+
+    if u_start is not None and not steady:
+        gather_slip(ix, iy, u_start, False, r, s)
+        u = None
+    else:
+        u = slip_of(p)
+    newton = krylov = 0
+    converged = False
+    sets_changed = not warm
+    n_changed = N if not warm else 0
+    few = 2                                     # set changes after which the next step may be final
+    p_level = max(float(np.abs(p).max(initial=0.0)), 1e-300)
+    q_lim = math.sqrt(tol / QUADRATIC)           # steps this small are final (quadratic convergence) ...
+    eta_final = min(1e-3, 0.1 * tol / q_lim)      # ... if solved this accurately
+    ratio = 0.0
+    for newton in range(1, max_iter + 1):
+        slip_geometry(stick, theta, g, s, p, t, D, scale)
+        r_max = residual(stick, t, s, R)
+        inv_stick[0] = op.inv if stick.any() else None
+        if slip_fft:
+            if stick.all():
+                inv_slip[0] = None
+            else:
+                inv_slip[0] = shifted_inverse(op.symbol, slip_scaling(stick, t, D, mdiag_s, sc))
+        b = -R / scale
+        if n_changed > few or (newton == 1 and steady):
+            eta = 1e-2        # the sets are still moving: a rough step
+        elif ratio > 0.0:     # expected step from the last step per unit residual: absolute accuracy
+            eta = min(0.1, max(eta_final, 0.1 * tol * p_level / max(ratio * r_max, 1e-300)))
+        else:
+            eta = eta_final
+        if steady:
+            dz, k = _gmres(J, Pinv, b, eta, 40)
+        else:
+            dz, k = pcg(b, eta, 200)
+        krylov += k
+        change = apply_step(stick, theta, g, dz, p, 0.5)
+        ratio = change / max(r_max, 1e-300)
+        u = slip_of(p)
+        to_slip, to_stick = update_sets(stick, theta, g, p, s, 1e-9)
+        p_level = max(float(np.abs(p).max(initial=0.0)), 1e-300)
+        final = change <= tol * p_level or (not sets_changed and change <= q_lim * p_level
+                                            and eta * change <= 0.1 * tol * p_level)
+        n_changed = to_slip + to_stick
+        sets_changed = n_changed > 0
+        if not sets_changed and final:
+            converged = True
+            break
+        if to_slip:                   # projected tractions: the slip follows
+            u = slip_of(p)
+    s_out = s.copy()
+    s_out[stick] = 0.0
+    return CoulombResult(p, s_out, stick, u.copy(), newton, krylov, converged)

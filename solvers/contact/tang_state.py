@@ -1,0 +1,80 @@
+"""Data structures of Kalker's TANG (notes in ``solvers.contact.tang``): the solution of one
+step, the problem's kinematics and options, and the transient predictor's history."""
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+W_OFFSET = 1.0 / 6.0        # rigid slip evaluated at x_I + W_OFFSET dx (see the module notes)
+QUADRATIC = 10.0            # bound of the Newton steps' quadratic constant (relative), for stopping
+TOL = 1e-8                  # default: Newton step <= TOL * traction level, no set change
+
+
+class TangentialContact(NamedTuple):
+    p1: np.ndarray          # traction on the rail, longitudinal [Pa] (nx, ny)
+    p2: np.ndarray          # traction on the rail, lateral [Pa]
+    stick: np.ndarray       # stick elements (bool)
+    slip: np.ndarray        # slip elements (bool); stick | slip = contact area
+    s1: np.ndarray          # slip velocity of the rail relative to the wheel [m/s]
+    s2: np.ndarray
+    u1: np.ndarray          # tangential displacement difference at time t [m]
+    u2: np.ndarray
+    F1: float               # forces on the rail [N]
+    F2: float
+    iterations: int         # Newton steps in total
+    converged: bool
+    krylov: int = 0         # Krylov (CG / GMRES) steps in total
+    u_ahead: np.ndarray | None = None    # (2, nx, ny): u(x + dx, t), the next step's transport term
+    history: "History | None" = None    # transient: the last steps' changes (the next step's predictor)
+    window: tuple | None = None          # (i0, i1, j0, j1): rows/columns where u1, u2, u_ahead are valid
+
+
+class History(NamedTuple):
+    """Differences of the last transient steps on the grid (2, nx, ny): first dp = p_k - p_k-1 and
+    second d2p = dp_k - dp_k-1 (likewise du, d2u of the displacements), and the order (0, 1, 2) of
+    the polynomial extrapolation that would have predicted the last step best."""
+    dp: np.ndarray
+    du: np.ndarray
+    d2p: np.ndarray | None
+    d2u: np.ndarray | None
+    order: int
+    window: tuple           # the working window of the step (the differences are valid there)
+
+
+def next_history(prev: History | None, window, dp, du) -> History:
+    """The history after a step with changes dp, du on ``window`` (the predictor's order chosen
+    by which would have predicted this step best)."""
+    if prev is None or prev.dp.shape != dp.shape or prev.window != window:
+        return History(dp, du, None, None, 1, window)
+    d2p, d2u = dp - prev.dp, du - prev.du
+    errors = [np.abs(dp).max(), np.abs(d2p).max()]          # constant, linear predictor
+    if prev.d2p is not None:
+        errors.append(np.abs(d2p - prev.d2p).max())          # quadratic
+    return History(dp, du, d2p, d2u, int(np.argmin(errors)), window)
+
+
+class Rolling(NamedTuple):
+    """The rolling problem of one step: grid dx (rolling direction) x dy [m], speed v [m/s],
+    Coulomb coefficient mu, creepages gamma_x, gamma_y [-], spin [1/m]."""
+    dx: float
+    dy: float
+    v: float
+    mu: float
+    gamma_x: float
+    gamma_y: float
+    spin: float
+
+
+class TangOptions(NamedTuple):
+    """Material and solver options of ``tang_steady`` / ``tang_transient``: E [Pa], nu (the
+    bodies' common elastic constants); tol: the Newton iteration stops when no element changes set
+    and the last step is below tol times the largest traction (or its remaining error is, by
+    quadratic convergence); w_offset: where the rigid slip is evaluated, x_I + w_offset dx
+    (module notes of ``solvers.contact.tang``); full_output: u1, u2 on the whole grid (one more FFT
+    product), False: only on the window around the contact (``window``), zero elsewhere."""
+    E: float = 210e9
+    nu: float = 0.3
+    tol: float = TOL
+    w_offset: float = W_OFFSET
+    full_output: bool = True
