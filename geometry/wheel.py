@@ -14,11 +14,12 @@ from __future__ import annotations
 
 import numpy as np
 
+from solvers.constants import THESIS_CONTACT_POSITIONS
+
 from .outline import GeometryError, Segment, bezier, check_simple, closed_polygon, fillet
 
-
-# lateral tread positions y^W of the nominal contact points (SPEC 2, thesis [4.1])
-CONTACT_Y = (0.005, -0.004, -0.032)
+# lateral tread positions y^W of the nominal contact points (SPEC 2, thesis [4.1]): mesh nodes sit there
+CONTACT_Y = tuple(y_w for y_w, _ in THESIS_CONTACT_POSITIONS.values())
 
 
 def _require(cond: bool, key: str, value, allowed: str) -> None:

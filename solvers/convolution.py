@@ -48,34 +48,42 @@ def convolve_fft(g: np.ndarray, F: np.ndarray) -> np.ndarray:
     return xi
 
 
-class RingConvolver(NamedTuple):
-    """Per-step direct convolution with a ring buffer of past forces (rail).
-    g (K, 2, 2) the kernel (g[0] unused), buf (2K, 2) the doubled ring of forces,
-    pos (1,) the write position.  ``step(F2, F3)`` records the force of step n and
-    returns the displacement at step n + 1."""
-    g: np.ndarray
+class RingState(NamedTuple):
+    """The ring convolver's state, changed in place by ``ring_step``: buf (2K, 2) the doubled ring
+    of past forces, pos (1,) int the write position."""
     buf: np.ndarray
     pos: np.ndarray
+
+
+class RingConvolver(NamedTuple):
+    """Per-step direct convolution with a ring buffer of past forces (rail).
+    g (K, 2, 2) the kernel (g[0] unused; read only); ``state`` (RingState) advanced IN PLACE by
+    ``ring_step`` / ``step(F2, F3)``, which record the force of step n and return the
+    displacement at step n + 1."""
+    g: np.ndarray
+    state: RingState
 
     def step(self, F2: float, F3: float) -> tuple[float, float]:
         return ring_step(self, F2, F3)
 
     def reset(self) -> None:
-        self.buf[:] = 0.0
-        self.pos[0] = 0
+        """Back to rest, in place."""
+        self.state.buf[:] = 0.0
+        self.state.pos[0] = 0
 
 
 def ring_convolver(g: np.ndarray) -> RingConvolver:
+    """The ring convolver of kernel g (K, 2, 2), at rest."""
     g = np.ascontiguousarray(g, dtype=float)
     K = g.shape[0]
-    return RingConvolver(g, np.zeros((2 * K, 2)), np.zeros(1, np.int64))
+    return RingConvolver(g, RingState(np.zeros((2 * K, 2)), np.zeros(1, np.int64)))
 
 
 @numba.njit(cache=True)
 def ring_step(rc, F2, F3):
     """njit: record (F2, F3) of step n, return (xi2, xi3) at step n + 1 =
     sum_{k=1}^{K-1} g[k] @ F[n+1-k]."""
-    g, buf, pos = rc
+    g, (buf, pos) = rc
     K = g.shape[0]
     p = pos[0]
     buf[p, 0] = F2

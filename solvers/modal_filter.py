@@ -45,48 +45,58 @@ def modal_kernel(n_lags: int, dt: float, f_r, modal_mass, zeta, phi) -> np.ndarr
     return g
 
 
+class FilterState(NamedTuple):
+    """The modal filters' state, the only part ``filter_step`` changes (in place): q (M,) complex,
+    a (M,) complex (kind-1 modes), u (2, M0) = Re q, Im q of the kind-0 modes."""
+    q: np.ndarray
+    a: np.ndarray
+    u: np.ndarray
+
+
 class ModalFilter(NamedTuple):
     """Exact recursive form of the wheel's modal kernel (see the module notes).
-    Coefficients (per mode r): kind 0 (zeta < 1, complex one-pole) or 1 (zeta >= 1,
+    Coefficients (per mode r, read only): kind 0 (zeta < 1, complex one-pole) or 1 (zeta >= 1,
     real poles); z = pole / first pole, p2 = second pole; w_in (M, 2): modal force
-    P_r = w_in[r] . (F2, F3); w_out (M, 2): xi_i += w_out[r, i] * y_r.  State: q, a (kind 1).
+    P_r = w_in[r] . (F2, F3); w_out (M, 2): xi_i += w_out[r, i] * y_r.
     The time loop runs the kind-0 modes from real, mode-contiguous copies (a loop without
     branches or complex types, which the compiler vectorises): u_coef (6, M0) = Re z, Im z,
-    w_in[:, 0], w_in[:, 1], w_out[:, 0], w_out[:, 1]; their state u_state (2, M0) = Re q, Im q;
-    ``over`` (M1,) the indices of the kind-1 modes.
-    Pass the whole tuple to the njit functions (``filter_step``,
-    ``filter_history``) from inside a numba time loop."""
+    w_in[:, 0], w_in[:, 1], w_out[:, 0], w_out[:, 1]; ``over`` (M1,) the indices of the kind-1
+    modes.  ``state`` (FilterState): the part advanced IN PLACE by ``filter_step`` /
+    ``filter_history`` / ``step``; ``fresh()`` gives a filter at rest sharing the coefficients.
+    Pass the whole tuple to the njit functions from inside a numba time loop."""
     kind: np.ndarray
     z: np.ndarray
     p2: np.ndarray
     w_in: np.ndarray
     w_out: np.ndarray
-    q: np.ndarray
-    a: np.ndarray
     u_coef: np.ndarray
-    u_state: np.ndarray
     over: np.ndarray
+    state: FilterState
 
     def step(self, F2: float, F3: float) -> tuple[float, float]:
-        """Record the force at the current step; return (xi2, xi3) at the next step."""
+        """Record the force at the current step (advancing ``state``); return (xi2, xi3) at the
+        next step."""
         return filter_step(self, F2, F3)
 
     def reset(self) -> None:
-        self.q[:] = 0.0
-        self.a[:] = 0.0
-        self.u_state[:] = 0.0
+        """Back to rest, in place."""
+        for x in self.state:
+            x[...] = 0.0
+
+    def fresh(self) -> "ModalFilter":
+        """The same filter with a state of its own, at rest."""
+        return self._replace(state=FilterState(*(np.zeros_like(x) for x in self.state)))
 
     def copy(self) -> "ModalFilter":
-        return ModalFilter(*(np.array(x, copy=True) for x in self))
+        """The same filter with a copy of the current state."""
+        return self._replace(state=FilterState(*(x.copy() for x in self.state)))
 
     def response(self, F: np.ndarray) -> np.ndarray:
-        """Whole history from rest (the state is not touched): xi (nt, 2)."""
-        return filter_history(self.copy_reset(), np.ascontiguousarray(F, dtype=float))
+        """Whole history from rest (this filter's state is not touched): xi (nt, 2)."""
+        return filter_history(self.fresh(), np.ascontiguousarray(F, dtype=float))
 
     def copy_reset(self) -> "ModalFilter":
-        c = self.copy()
-        c.reset()
-        return c
+        return self.fresh()
 
 
 def modal_filter(dt: float, f_r, modal_mass, zeta, phi) -> ModalFilter:
@@ -122,15 +132,16 @@ def modal_filter(dt: float, f_r, modal_mass, zeta, phi) -> ModalFilter:
     w_out = np.ascontiguousarray(phi * (gain / modal_mass)[:, None])
     under = kind == 0
     u_coef = np.ascontiguousarray(np.vstack([z.real, z.imag, w_in.T, w_out.T])[:, under])
-    return ModalFilter(kind, z, p2, w_in, w_out, np.zeros(M, complex), np.zeros(M, complex), u_coef,
-                       np.zeros((2, int(under.sum()))), np.flatnonzero(~under).astype(np.int64))
+    return ModalFilter(kind, z, p2, w_in, w_out, u_coef, np.flatnonzero(~under).astype(np.int64),
+                       FilterState(np.zeros(M, complex), np.zeros(M, complex), np.zeros((2, int(under.sum())))))
 
 
 @numba.njit(cache=True)
 def filter_step(filt, F2, F3):
     """njit: push the force (F2, F3) of step n into the modal filters, return the
     displacement (xi2, xi3) at step n + 1 (forces up to step n only, g[0] excluded)."""
-    kind, z, p2, w_in, w_out, q, a, uc, us, over = filt
+    kind, z, p2, w_in, w_out, uc, over, state = filt
+    q, a, us = state
     x2 = 0.0
     x3 = 0.0
     for j in range(uc.shape[1]):                    # zeta < 1: q <- z (q + P), y = Im q

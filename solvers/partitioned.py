@@ -39,8 +39,20 @@ import rocket_fft  # noqa: F401  (registers numpy.fft for numba)
 DEFAULT_BLOCK = 128
 
 
+class PartitionedState(NamedTuple):
+    """The partitioned convolver's state, changed in place by ``partitioned_step``: hbuf, X, Y,
+    seg, tail, ctr as described in ``PartitionedConvolver``."""
+    hbuf: np.ndarray
+    X: np.ndarray
+    Y: np.ndarray
+    seg: np.ndarray
+    tail: np.ndarray
+    ctr: np.ndarray
+
+
 class PartitionedConvolver(NamedTuple):
-    """State and coefficients of the partitioned convolution (module notes).  ``step(F2, F3)``
+    """Coefficients (head, H: read only) and ``state`` (PartitionedState, advanced IN PLACE)
+    of the partitioned convolution (module notes).  ``step(F2, F3)``
     records the force of step n and returns the displacement at step n + 1; pass the tuple to
     ``partitioned_step`` inside numba.
 
@@ -53,13 +65,8 @@ class PartitionedConvolver(NamedTuple):
     tail (B, 2) the partitions' contribution to the current block's outputs; ctr (3,) int:
     step count, ring position, newest delay-line slot."""
     head: np.ndarray
-    hbuf: np.ndarray
     H: np.ndarray
-    X: np.ndarray
-    Y: np.ndarray
-    seg: np.ndarray
-    tail: np.ndarray
-    ctr: np.ndarray
+    state: PartitionedState
 
     @property
     def block(self) -> int:
@@ -69,14 +76,17 @@ class PartitionedConvolver(NamedTuple):
         return partitioned_step(self, F2, F3)
 
     def reset(self) -> None:
-        for a in (self.hbuf, self.X, self.Y, self.seg, self.tail, self.ctr):
+        """Back to rest, in place."""
+        for a in self.state:
             a[...] = 0
+
+    def fresh(self) -> "PartitionedConvolver":
+        """The same convolver with a state of its own, at rest."""
+        return self._replace(state=PartitionedState(*(np.zeros_like(a) for a in self.state)))
 
     def response(self, F: np.ndarray) -> np.ndarray:
         """Whole history from rest (own state untouched): xi (nt, 2), xi[0] = 0."""
-        c = PartitionedConvolver(*(np.array(x, copy=True) for x in self))
-        c.reset()
-        return partitioned_history(c, np.ascontiguousarray(F, dtype=float))
+        return partitioned_history(self.fresh(), np.ascontiguousarray(F, dtype=float))
 
 
 def partitioned_convolver(g: np.ndarray, block: int | None = DEFAULT_BLOCK) -> PartitionedConvolver:
@@ -102,15 +112,16 @@ def partitioned_convolver(g: np.ndarray, block: int | None = DEFAULT_BLOCK) -> P
         S = np.fft.rfft(part, axis=0).T                 # (4, B + 1)
         H[p - 1, :4] = S.real
         H[p - 1, 4:] = S.imag
-    return PartitionedConvolver(head, np.zeros((2, 2 * B)), H, np.zeros((n, 4, B + 1)), np.zeros((4, B + 1)),
-                                np.zeros(2 * B, complex), np.zeros((B, 2)), np.zeros(3, np.int64))
+    state = PartitionedState(np.zeros((2, 2 * B)), np.zeros((n, 4, B + 1)), np.zeros((4, B + 1)),
+                             np.zeros(2 * B, complex), np.zeros((B, 2)), np.zeros(3, np.int64))
+    return PartitionedConvolver(head, H, state)
 
 
 @numba.njit(cache=True)
 def _next_block(pc):
     """At a block boundary: the new input segment's spectrum into the delay line, then the
     partitions' contribution to the next B outputs (overlap-save)."""
-    head, hbuf, H, X, Y, seg, tail, ctr = pc
+    head, H, (hbuf, X, Y, seg, tail, ctr) = pc
     B = head.shape[1]
     n = H.shape[0]
     N = 2 * B
@@ -164,7 +175,7 @@ def _accumulate(H, X, Y):
 @numba.njit(cache=True, inline="always")
 def partitioned_step(pc, F2, F3):
     """njit: record (F2, F3) of step n, return (xi2, xi3) at step n + 1 (module notes)."""
-    head, hbuf, H, X, Y, seg, tail, ctr = pc
+    head, H, (hbuf, X, Y, seg, tail, ctr) = pc
     B = head.shape[1]
     n = ctr[0]
     p = ctr[1]
