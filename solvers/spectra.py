@@ -30,6 +30,7 @@ default), for x(t) = A cos(2 pi f0 t + p) sampled at dt, N samples, window w_k:
 from __future__ import annotations
 
 import numpy as np
+from scipy.signal.windows import hann
 
 
 def _window(name: str, N: int) -> np.ndarray:
@@ -37,7 +38,7 @@ def _window(name: str, N: int) -> np.ndarray:
         return np.ones(N)
     if name == "hann":
         # periodic Hann (DFT-even): exact coherent gain 1/2 and bin-spaced zeros
-        return 0.5 - 0.5 * np.cos(2 * np.pi * np.arange(N) / N)
+        return hann(N, sym=False)
     raise ValueError(f"window: 'hann' or 'rect', got {name!r}")
 
 
