@@ -30,7 +30,6 @@ default), for x(t) = A cos(2 pi f0 t + p) sampled at dt, N samples, window w_k:
 from __future__ import annotations
 
 import numpy as np
-from scipy.signal.windows import hann
 
 
 def _window(name: str, N: int) -> np.ndarray:
@@ -38,6 +37,8 @@ def _window(name: str, N: int) -> np.ndarray:
         return np.ones(N)
     if name == "hann":
         # periodic Hann (DFT-even): exact coherent gain 1/2 and bin-spaced zeros
+        from scipy.signal.windows import hann        # (scipy.signal takes ~0.5 s to import: on first use)
+
         return hann(N, sym=False)
     raise ValueError(f"window: 'hann' or 'rect', got {name!r}")
 

@@ -15,7 +15,6 @@ from ..partitioned import DEFAULT_BLOCK, PartitionedConvolver, partitioned_convo
 from .inputs import (DEFAULT_KICK, EPS_SLIP, MAX_DURATION, ContactModel, LoopParams, WheelModes, per_step,
                      point_tables, static_approach, steady_forces)
 from .kernel import run_point
-from .reference import run_reference
 from .result import InteractionResult, assemble, record
 from .stop import StopRule, windows
 
@@ -133,6 +132,8 @@ def simulate(wheel: WheelModes | None, rail_kernel: np.ndarray | None, contact: 
     if s.tangential == "point" and s.normal == "table" and s.compliance == "table" and s.driver == "auto":
         done, reason = run_point(filt, rc, p, point_tables(contact), rec, win)
     else:
+        from .reference import run_reference          # (Kalker's TANG, NORM: imported when needed)
+
         done, reason, F_ref = run_reference(filt, rc, p, contact, rec, win, tangential=s.tangential,
                                             normal=s.normal, compliance=s.compliance, start=s.start)
         p = p._replace(F_ref=F_ref)
