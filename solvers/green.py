@@ -129,8 +129,10 @@ evaluated at the single lag k from the transfer receptance at x_k
 # modal kernel and recursive filters), convolution (direct, FFT, ring), moving_green (the rail's
 # moving kernel by Kropp per lag; the fast form is solvers.moving_kernel).
 from .band_fit import BandFit  # noqa: F401
-from .convolution import RingConvolver, convolve_direct, convolve_fft, ring_convolver, ring_step  # noqa: F401
+from .convolution import (RingConvolver, RingState, convolve_direct, convolve_fft, ring_convolver,  # noqa: F401
+                          ring_step)
 from .kropp import (DecayCheck, GreenDecayError, choose_grid, decayed, frequency_grid,  # noqa: F401
                     green_from_receptance, points_in_band)
-from .modal_filter import ModalFilter, filter_history, filter_step, modal_filter, modal_impulse, modal_kernel  # noqa: F401
+from .modal_filter import (FilterState, ModalFilter, filter_history, filter_step, modal_filter,  # noqa: F401
+                           modal_impulse, modal_kernel)
 from .moving_green import moving_green  # noqa: F401

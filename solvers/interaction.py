@@ -119,7 +119,8 @@ Drivers
 -------
 ``simulate(...)`` runs
 * normal='table', tangential='point': the whole time loop inside numba
-  (``timeloop.kernel.run_point``), O(modes + B + K / B) per step for a rail kernel of K lags and head B (benchmarks/interaction.py);
+  (``timeloop.kernel.run_point``), O(modes + B + K / B) per step for a rail kernel of K lags
+  and head B (benchmarks/interaction.py);
 * normal='norm', compliance='exact' and/or tangential='kalker' (or
   driver='python'): the reference drivers, a Python loop over the steps with
   the same kinematics and the same njit building blocks: per-step NORM

@@ -33,14 +33,15 @@ import numpy as np
 
 
 def _window(name: str, N: int) -> np.ndarray:
+    """The DFT-even (periodic) window of N samples from scipy's registry: 'hann' (exact coherent
+    gain 1/2 and bin-spaced zeros) or 'rect' (also None, 'boxcar', 'none')."""
     if name in (None, "rect", "boxcar", "none"):
-        return np.ones(N)
-    if name == "hann":
-        # periodic Hann (DFT-even): exact coherent gain 1/2 and bin-spaced zeros
-        from scipy.signal.windows import hann        # (scipy.signal takes ~0.5 s to import: on first use)
+        name = "boxcar"
+    elif name != "hann":
+        raise ValueError(f"window: 'hann' or 'rect', got {name!r}")
+    from scipy.signal import get_window          # (scipy.signal takes ~0.5 s to import: on first use)
 
-        return hann(N, sym=False)
-    raise ValueError(f"window: 'hann' or 'rect', got {name!r}")
+    return get_window(name, N)
 
 
 def amplitude_spectrum(x, dt: float, *, window: str = "hann", scaling: str = "amplitude",

@@ -66,7 +66,8 @@ which moves the layer resonances above ~15 kHz.
 # The public names of the waveguide model; the code lives in ``solvers.wfe``: assembly (matrices,
 # materials, pad calibration), family (one wave family, real-k waves), section (torsion and
 # shear centre), waves (wave types and dispersion branches).
-from .wfe.assembly import FACETS, PAD_TAG, RAIL_TAG, Assembled, assemble, lame, material_moduli, pad_calibration  # noqa: F401
+from .wfe.assembly import (FACETS, PAD_TAG, RAIL_TAG, Assembled, assemble, lame, material_moduli,  # noqa: F401
+                          pad_calibration)
 from .wfe.family import Family, eig_real_k, family  # noqa: F401
 from .wfe.section import torsion_properties  # noqa: F401
 from .wfe.waves import LABELS, classify, dispersion, region_masks  # noqa: F401

@@ -17,26 +17,22 @@ xi3 alone for a fixed gap, so it can be tabulated along a NormTable.
 """
 from __future__ import annotations
 
+import functools
+
 import numba
 import numpy as np
 
 from .influence import Convolver, tangential_kernels
 
 
-def _convolver(shape, dx, dy, E, nu):
+@functools.lru_cache(maxsize=8)
+def _convolver(shape: tuple, dx: float, dy: float, E: float, nu: float) -> Convolver:
+    """The tangential influence convolver of a grid (cached by value: shape, dx, dy, E, nu)."""
     return Convolver(*tangential_kernels(shape[0], shape[1], dx, dy, E, nu))
 
 
-_CACHE: dict = {}
-
-
 def _conv(shape, dx, dy, E, nu):
-    key = (tuple(shape), float(dx), float(dy), float(E), float(nu))
-    if key not in _CACHE:
-        if len(_CACHE) > 8:
-            _CACHE.clear()
-        _CACHE[key] = _convolver(shape, dx, dy, E, nu)
-    return _CACHE[key]
+    return _convolver(tuple(int(n) for n in shape), float(dx), float(dy), float(E), float(nu))
 
 
 def contact_compliance(p3, F_prev, dx, dy, E=210e9, nu=0.3):
