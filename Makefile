@@ -150,6 +150,8 @@ test: | $(STAMP) ## run the test suite (fast; validation tests are skipped)
 
 validate: | $(STAMP) ## run the slower validation suite and write docs/validation.md
 	$(PY) -m pytest -q --validation tests
+	$(PY) -m tests.contact.report > /dev/null
+	$(PY) -m tests.greens.test_report > /dev/null
 	$(PY) -m pipeline.docs validation
 
 bench: | $(STAMP) ## run the benchmarks and write docs/benchmarks.md
