@@ -7,7 +7,7 @@ leaves the analytic beams by more than the tolerances the report states)
 """
 from __future__ import annotations
 
-import os
+from pipeline.artifacts import atomic_write
 import time
 from pathlib import Path
 
@@ -24,10 +24,8 @@ LAB_COLORS = {"vertical bending": "C0", "lateral bending": "C1", "torsion": "C2"
 
 
 def _write(name: str, text: str) -> None:
-    DOCS.mkdir(parents=True, exist_ok=True)
-    tmp = DOCS / f".{name}.tmp"
-    tmp.write_text(text)
-    os.replace(tmp, DOCS / name)
+    with atomic_write(DOCS / name) as tmp:
+        tmp.write_text(text)
 
 
 def _db(G):
