@@ -45,11 +45,11 @@ export OMP_NUM_THREADS ?= 1
 DEPS_MK  := $(BUILD)/deps.mk
 PKG_PY   := $(filter-out tests/% benchmarks/%,$(wildcard */*.py */*/*.py */*/*/*.py))
 ifeq ($(filter clean distclean help,$(MAKECMDGOALS)),)
--include $(DEPS_MK)
+include $(DEPS_MK)
 endif
 $(DEPS_MK): $(PKG_PY)
 	@mkdir -p $(@D)
-	$(DEPS_PY) pipeline/deps.py > $@.tmp && mv $@.tmp $@
+	$(DEPS_PY) pipeline/deps.py > $@.tmp && mv $@.tmp $@ || { rm -f $@.tmp; exit 1; }
 
 .DEFAULT_GOAL := all
 .PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate stability stability-map listen report study check clean distclean FORCE
