@@ -73,7 +73,8 @@ def test_layering(layer, forbidden):
     assert not bad, f"{layer}/ must not import {forbidden}/:\n" + "\n".join(bad)
 
 
-FILE_READS = {"open", "load", "loadtxt", "genfromtxt", "fromfile", "read_text", "read_bytes", "read_csv"}
+FILE_READS = {"open", "load", "loadtxt", "genfromtxt", "fromfile", "read_text", "read_bytes", "read_csv",
+              "read_msh", "read_from_msh"}
 
 
 @pytest.mark.parametrize("layer", ["solvers", "geometry"])
@@ -87,8 +88,9 @@ def test_numerical_layers_read_no_files(layer):
                 if isinstance(node, ast.Call):
                     f = node.func
                     name = f.id if isinstance(f, ast.Name) else f.attr if isinstance(f, ast.Attribute) else ""
-                    if name in FILE_READS and not (name == "load" and isinstance(f, ast.Attribute)
-                                                   and ast.unparse(f.value) not in ("np", "numpy")):
+                    if (name in FILE_READS and not (name == "load" and isinstance(f, ast.Attribute)
+                                                    and ast.unparse(f.value) not in ("np", "numpy"))) \
+                            or ast.unparse(f) == "gmsh.merge":
                         bad.append(f"{_rel(p)}:{node.lineno} {ast.unparse(f)}(...)")
     assert not bad, f"{layer}/ reads files:\n" + "\n".join(bad)
 
@@ -161,16 +163,26 @@ def _consts(node) -> list:
 
 
 def test_one_modal_damping_rule():
-    """[4.11]: zeta = 1e-3 (n = 0), 1e-2 (n = 1), 1e-4 (n >= 2): one function holds the three values."""
+    """[4.11]: zeta = 1e-3 (n = 0), 1e-2 (n = 1), 1e-4 (n >= 2).  A home of the rule is a function
+    holding the three values itself, or a short module-level expression holding them (a table)."""
+    rule = {1e-3, 1e-2, 1e-4}
     homes = []
-    for p, fn in _functions(_files(*LAYERS)):
-        values = set(_consts(fn))
-        inner = [f for f in ast.walk(fn) if f is not fn and isinstance(f, (ast.FunctionDef, ast.AsyncFunctionDef))]
-        if {1e-3, 1e-2, 1e-4} <= values and not any({1e-3, 1e-2, 1e-4} <= set(_consts(f)) for f in inner):
-            homes.append(f"{_rel(p)}:{fn.lineno} {fn.name}")
+    for p in _files(*LAYERS):
+        tree = _tree(p)
+        for stmt in tree.body:  # a module-level table: a short expression holding the three values
+            if not isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+                small = [n for n in ast.walk(stmt) if rule <= set(_consts(n)) and len(ast.unparse(n)) <= 300]
+                if small:
+                    homes.append(f"{_rel(p)}:{stmt.lineno} module level: {ast.unparse(small[-1])[:80]}")
+        for fn in (n for n in ast.walk(tree) if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef))):
+            own = {n.value for n in ast.walk(fn) if isinstance(n, ast.Constant) and _enclosing_function(n) is fn
+                   and isinstance(n.value, float)}
+            if rule <= own:
+                homes.append(f"{_rel(p)}:{fn.lineno} {fn.name}")
     named = [f"{_rel(p)}:{fn.lineno}" for p, fn in _functions(_files(*LAYERS)) if fn.name == "modal_damping"]
+    assert homes, "no home of the modal damping rule [4.11] found (a function holding 1e-3, 1e-2 and 1e-4)"
     assert len(homes) == 1, "the modal damping rule [4.11] is written in:\n" + "\n".join(homes)
-    assert len(named) == 1, "modal_damping is defined in:\n" + "\n".join(named)
+    assert len(named) <= 1, "modal_damping is defined in:\n" + "\n".join(named)
 
 
 def _modal_frf_sites(p: Path) -> list[str]:
