@@ -1,21 +1,38 @@
 # Curve squeal pipeline: geometry -> wheel modes -> ... (see README).
 # `make` sets up the machine and runs the default case as far as the stages
 # exist; `make test` sets up and runs the test suite.  Select inputs with
-# WHEEL=<name> (geometry/wheels/<name>.toml), RAIL=<name> (geometry/rails/),
-# CASE=<name> (pipeline/cases/), STUDY=<name> (pipeline/studies/).
+# CASE=<name> (pipeline/cases/; the case names its wheel and rail), WHEEL=<name>
+# (geometry/wheels/) and RAIL=<name> (geometry/rails/) for the wheel and rail
+# stages alone, STUDY=<name> (pipeline/studies/).
 
-WHEEL ?= c20
-RAIL  ?= bv50
 CASE  ?= default
 BUILD ?= build
 PY    := .venv/bin/python
 STAMP := .venv/.setup-stamp
+# pipeline/deps.py uses the standard library only: it runs before the venv exists
+DEPS_PY := $(firstword $(wildcard $(PY)) /usr/bin/python3)
+CFILE := pipeline/cases/$(CASE).toml
+# the wheel and rail come from the case file (its keys `wheel`, `rail`): WHEEL=/RAIL= only for
+# the wheel and rail stages alone, and an error when they disagree with a case target's case
+CASE_INPUTS := $(shell $(DEPS_PY) pipeline/deps.py --case $(CFILE) 2>&1)
+CASE_OK     := $(filter 0,$(.SHELLSTATUS))
+WHEEL ?= $(if $(CASE_OK),$(word 1,$(CASE_INPUTS)),c20)
+RAIL  ?= $(if $(CASE_OK),$(word 2,$(CASE_INPUTS)),bv50)
+CASE_GOALS := all contact greens simulate radiate stability listen report study stability-map
+ifneq ($(filter $(CASE_GOALS) $(BUILD)/cases/% $(BUILD)/report/%,$(or $(MAKECMDGOALS),all)),)
+  ifeq ($(CASE_OK),)
+    $(error CASE=$(CASE): $(CASE_INPUTS))
+  endif
+  ifneq ($(WHEEL) $(RAIL),$(CASE_INPUTS))
+    $(error CASE=$(CASE) names wheel $(word 1,$(CASE_INPUTS)) and rail $(word 2,$(CASE_INPUTS)) ($(CFILE)); \
+      WHEEL=$(WHEEL) RAIL=$(RAIL) disagree: drop WHEEL=/RAIL= (the case decides))
+  endif
+endif
 W     := $(BUILD)/wheels/$(WHEEL)
 R     := $(BUILD)/rails/$(RAIL)
 C     := $(BUILD)/cases/$(CASE)
 WFILE := geometry/wheels/$(WHEEL).toml
 RFILE := geometry/rails/$(RAIL).toml
-CFILE := pipeline/cases/$(CASE).toml
 STUDY ?= map
 # the cases a study runs on: its `cases = [...]` line (read without Python)
 STUDY_CASES = $(shell sed -n 's/^cases *= *\[\(.*\)\].*/\1/p' pipeline/studies/$(STUDY).toml | tr -d '",')
@@ -23,16 +40,16 @@ export SQUEAL_BUILD_DIR := $(abspath $(BUILD))
 export VTK_DEFAULT_OPENGL_WINDOW ?= vtkEGLRenderWindow
 export OMP_NUM_THREADS ?= 1
 
-GEOMETRY_SRC := geometry/wheel.py geometry/outline.py geometry/mesher.py
-MODES_SRC    := solvers/axisym.py solvers/classify.py solvers/wheelset.py pipeline/wheel_stage.py
-SHAPES_SRC   := postprocess/mode_shapes.py
-RAIL_SRC     := geometry/rail.py geometry/rail_mesh.py geometry/mesher.py solvers/waveguide.py $(wildcard solvers/wfe/*.py) solvers/rail_model.py solvers/rail_reduced.py solvers/rail_response.py pipeline/rail_model.py pipeline/rail_stage.py
-CONTACT_SRC  := $(wildcard solvers/contact/*.py) pipeline/contact_stage.py geometry/wheel.py geometry/rail.py
-GREENS_SRC   := solvers/green.py solvers/kropp.py solvers/band_fit.py solvers/receptance.py solvers/rail_response.py solvers/moving_kernel.py pipeline/rail_kernel.py pipeline/greens_stage.py
-SIM_SRC      := solvers/interaction.py $(wildcard solvers/timeloop/*.py) solvers/modal_filter.py solvers/partitioned.py solvers/spectra.py pipeline/simulate_stage.py postprocess/spectra.py
-STAB_SRC     := solvers/stability.py solvers/interaction.py $(wildcard solvers/timeloop/*.py) solvers/modal_filter.py solvers/partitioned.py pipeline/stability_stage.py
-RADIATE_SRC  := postprocess/radiation.py postprocess/force_radiation.py postprocess/spectra.py solvers/spectra.py solvers/receptance.py geometry/wheel.py pipeline/radiate_stage.py
-LISTEN_SRC   := postprocess/listener.py postprocess/audio.py postprocess/spectra.py solvers/spectra.py pipeline/listen_stage.py pipeline/listen_plot.py
+# Each stage's sources, DEPS_<stage>: the repository files its code reaches, computed from the
+# imports by pipeline/deps.py into $(BUILD)/deps.mk, regenerated when a package's .py changes.
+DEPS_MK  := $(BUILD)/deps.mk
+PKG_PY   := $(filter-out tests/% benchmarks/%,$(wildcard */*.py */*/*.py */*/*/*.py))
+ifeq ($(filter clean distclean help,$(MAKECMDGOALS)),)
+include $(DEPS_MK)
+endif
+$(DEPS_MK): $(PKG_PY)
+	@mkdir -p $(@D)
+	$(DEPS_PY) pipeline/deps.py > $@.tmp && mv $@.tmp $@ || { rm -f $@.tmp; exit 1; }
 
 .DEFAULT_GOAL := all
 .PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate stability stability-map listen report study check clean distclean FORCE
@@ -42,7 +59,7 @@ all: report ## run the default case as far as the stages exist (wheel, rail, con
 
 help: ## list the targets
 	@grep -hE '^[a-z][a-zA-Z_-]*:.*## ' $(MAKEFILE_LIST) | sed 's/:.*## /\t/' | awk -F'\t' '{printf "  %-10s %s\n", $$1, $$2}'
-	@echo "  variables: WHEEL=$(WHEEL) (available: $(notdir $(basename $(wildcard geometry/wheels/*.toml))))"
+	@echo "  variables: CASE=$(CASE) (available: $(notdir $(basename $(wildcard pipeline/cases/*.toml)))), WHEEL=, RAIL= for mesh/modes/rail alone (default: the case's)"
 
 # --- setup: Debian packages (once), then the venv (again when requirements change)
 .apt-stamp: debian-packages.txt
@@ -62,61 +79,61 @@ $(STAMP): requirements.txt constraints.txt .apt-stamp
 
 setup: $(STAMP) ## install Debian packages and the Python venv (stamp files; reruns only when the lists change)
 
-check: | $(STAMP) ## validate the WHEEL, RAIL and CASE files only
+check: | $(STAMP) ## validate the CASE file and its wheel and rail (or WHEEL=, RAIL=) only
 	$(PY) -m pipeline check --wheel $(WHEEL) --rail $(RAIL) --case $(CASE)
 
 # --- wheel stages
-$(W)/mesh.json: $(WFILE) $(GEOMETRY_SRC) | $(STAMP)
+$(W)/mesh.json: $(WFILE) $(DEPS_mesh) | $(STAMP)
 	$(PY) -m pipeline mesh --wheel $(WHEEL)
 
-$(W)/modes.npz: $(W)/mesh.json $(WFILE) $(MODES_SRC) | $(STAMP)
+$(W)/modes.npz: $(W)/mesh.json $(WFILE) $(DEPS_modes) | $(STAMP)
 	$(PY) -m pipeline modes --wheel $(WHEEL)
 
-$(W)/shapes/gallery.png: $(W)/modes.npz $(SHAPES_SRC) | $(STAMP)
+$(W)/shapes/gallery.png: $(W)/modes.npz $(WFILE) $(DEPS_shapes) | $(STAMP)
 	$(PY) -m pipeline shapes --wheel $(WHEEL)
 
 # --- rail and contact stages
-$(R)/rail.npz: $(RFILE) $(RAIL_SRC) | $(STAMP)
+$(R)/rail.npz: $(RFILE) $(DEPS_rail) | $(STAMP)
 	$(PY) -m pipeline rail --rail $(RAIL)
 
-$(C)/contact.npz: $(CFILE) $(WFILE) $(RFILE) $(CONTACT_SRC) | $(STAMP)
+$(C)/contact.npz: $(CFILE) $(WFILE) $(RFILE) $(DEPS_contact) | $(STAMP)
 	$(PY) -m pipeline contact --case $(CASE)
 
-$(C)/greens.npz: $(CFILE) $(W)/modes.npz $(R)/rail.npz $(GREENS_SRC) | $(STAMP)
+$(C)/greens.npz: $(CFILE) $(WFILE) $(RFILE) $(W)/modes.npz $(R)/rail.npz $(DEPS_greens) | $(STAMP)
 	$(PY) -m pipeline greens --case $(CASE)
 
-$(C)/simulate.npz: $(CFILE) $(C)/contact.npz $(C)/greens.npz $(SIM_SRC) | $(STAMP)
+$(C)/simulate.npz: $(CFILE) $(WFILE) $(RFILE) $(C)/contact.npz $(C)/greens.npz $(DEPS_simulate) | $(STAMP)
 	$(PY) -m pipeline simulate --case $(CASE)
 
-$(C)/radiate.npz: $(CFILE) $(W)/modes.npz $(C)/simulate.npz $(RADIATE_SRC) | $(STAMP)
+$(C)/radiate.npz: $(CFILE) $(WFILE) $(RFILE) $(W)/modes.npz $(C)/simulate.npz $(DEPS_radiate) | $(STAMP)
 	$(PY) -m pipeline radiate --case $(CASE)
 
-$(C)/stability.npz: $(CFILE) $(C)/contact.npz $(C)/greens.npz $(STAB_SRC) | $(STAMP)
+$(C)/stability.npz: $(CFILE) $(WFILE) $(RFILE) $(C)/contact.npz $(C)/greens.npz $(DEPS_stability) | $(STAMP)
 	$(PY) -m pipeline stability --case $(CASE)
 
 # the receiver: the case's [listener] table, or DISTANCE=, HEIGHT= (m); ALLOW_SILENT=1 for a case that does not
 # squeal.  A run with these always runs and leaves listen.override, so that the next plain run restores the case's own
 LISTEN_ARGS = $(strip $(if $(DISTANCE),--distance $(DISTANCE)) $(if $(HEIGHT),--height $(HEIGHT)) $(if $(ALLOW_SILENT),--allow-silent))
-$(C)/listen.npz: $(CFILE) $(WFILE) $(C)/radiate.npz $(C)/simulate.npz $(LISTEN_SRC) $(if $(LISTEN_ARGS)$(wildcard $(C)/listen.override),FORCE) | $(STAMP)
+$(C)/listen.npz: $(CFILE) $(WFILE) $(RFILE) $(C)/radiate.npz $(C)/simulate.npz $(DEPS_listen) $(if $(LISTEN_ARGS)$(wildcard $(C)/listen.override),FORCE) | $(STAMP)
 	$(PY) -m pipeline listen --case $(CASE) $(LISTEN_ARGS)
 	@$(if $(LISTEN_ARGS),touch,rm -f) $(C)/listen.override
 
 FORCE:
 
 # the listening section is in the report when `make listen` has run (as the studies)
-$(BUILD)/report/$(CASE)/report.md: $(CFILE) $(W)/modes.npz $(W)/shapes/gallery.png $(R)/rail.npz $(C)/contact.npz $(C)/greens.npz $(C)/simulate.npz $(C)/radiate.npz pipeline/report.py pipeline/study_report.py $(wildcard $(BUILD)/studies/*/summary.md) $(wildcard $(C)/listen.npz) | $(STAMP)
+$(BUILD)/report/$(CASE)/report.md: $(CFILE) $(W)/modes.npz $(W)/shapes/gallery.png $(R)/rail.npz $(C)/contact.npz $(C)/greens.npz $(C)/simulate.npz $(C)/radiate.npz $(WFILE) $(RFILE) $(DEPS_report) $(wildcard $(BUILD)/studies/*/summary.md) $(wildcard $(C)/listen.npz) | $(STAMP)
 	$(PY) -m pipeline report --case $(CASE)
 
-mesh: $(W)/mesh.json ## Gmsh cross-section of WHEEL -> build/wheels/WHEEL/section.msh
+mesh: $(W)/mesh.json ## Gmsh cross-section of WHEEL (default: CASE's wheel) -> build/wheels/WHEEL/section.msh
 modes: $(W)/modes.npz $(W)/shapes/gallery.png ## wheel modes n = 0..N (dolfinx+SLEPc), mode table and 3D renders
-rail: $(R)/rail.npz ## rail section, waveguide FE, dispersion, receptances (RAIL=bv50)
+rail: $(R)/rail.npz ## rail section, waveguide FE, dispersion, receptances (RAIL=, default: CASE's rail)
 contact: $(C)/contact.npz ## contact of CASE: gap, NORM table, compliance, friction curves
 greens: $(C)/greens.npz ## Green's functions of CASE: wheel (Kropp + modal filters), moving rail kernel
 simulate: $(C)/simulate.npz ## time-domain interaction of CASE: force histories, L_F2, dominant frequency
 radiate: $(C)/radiate.npz ## sound power of CASE's wheel under the simulated forces: W(f), L_W, per harmonic, unit-force curves
 stability: $(C)/stability.npz ## frequency-domain stability screen of CASE: closed-loop poles, growth rates, mode labels
 listen: $(C)/listen.npz ## what a listener hears: L_p, L_pA, 1/3 octaves, a calibrated WAV of the squeal; DISTANCE=, HEIGHT=, ALLOW_SILENT=1
-report: $(BUILD)/report/$(CASE)/report.md ## one Markdown report of CASE (WHEEL, RAIL must be the case's)
+report: $(BUILD)/report/$(CASE)/report.md ## one Markdown report of CASE (its wheel and rail come from the case file)
 
 # --- studies (SPEC 7): the cases' artifacts first, then the study on Dask (resumes when interrupted)
 study: | $(STAMP) ## parameter study STUDY=map|damping|contact on Dask -> build/studies/STUDY/; QUICK=1, WORKERS=N, SCHEDULER=tcp://host:port
@@ -133,6 +150,8 @@ test: | $(STAMP) ## run the test suite (fast; validation tests are skipped)
 
 validate: | $(STAMP) ## run the slower validation suite and write docs/validation.md
 	$(PY) -m pytest -q --validation tests
+	$(PY) -m tests.contact.report > /dev/null
+	$(PY) -m tests.greens.test_report > /dev/null
 	$(PY) -m pipeline.docs validation
 
 bench: | $(STAMP) ## run the benchmarks and write docs/benchmarks.md

@@ -15,6 +15,8 @@ import sys
 import time
 from pathlib import Path
 
+from pipeline.artifacts import atomic_write
+
 ROOT = Path(__file__).resolve().parent.parent
 OUT = ROOT / "docs" / "benchmarks.md"
 SUITES = ["wheel", "contact", "rail", "greens", "fast_rail", "interaction", "radiation", "stability", "study"]
@@ -77,14 +79,11 @@ runs unless a section says otherwise.
     print(text)
     if chosen and update and OUT.exists():
         new = update_sections(OUT.read_text(), sections)
-        tmp = OUT.with_name(".benchmarks.md.tmp")
-        tmp.write_text(new)
-        os.replace(tmp, OUT)
+        with atomic_write(OUT) as tmp:
+            tmp.write_text(new)
     if not chosen:
-        OUT.parent.mkdir(exist_ok=True)
-        tmp = OUT.with_name(".benchmarks.md.tmp")
-        tmp.write_text(text)
-        os.replace(tmp, OUT)
+        with atomic_write(OUT) as tmp:
+            tmp.write_text(text)
     return 0
 
 

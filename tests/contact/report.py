@@ -3,8 +3,8 @@ plots for docs/validation/30_contact.md and docs/validation/contact_*.png.
 
     OMP_NUM_THREADS=1 .venv/bin/python -m tests.contact.report      # ~1 min on one core
 
-Also run by `make validate` through tests/contact/test_validation_report.py.  The fast
-assertions on the same comparisons are the other tests in tests/contact/.
+Run by `make validate` as a writer, not a test (its pytest wrapper asserted only the heading it
+wrote); the assertions on the same comparisons are the other tests in tests/contact/.
 """
 from __future__ import annotations
 

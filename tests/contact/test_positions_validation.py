@@ -2,7 +2,7 @@
 BV50 head profiles: static NORM solution and the regularized friction curves
 for mu = 0.10 .. 0.60, written to docs/validation/31_contact_positions.md
 (make validate)."""
-import os
+from pipeline.artifacts import atomic_write
 from pathlib import Path
 
 import numpy as np
@@ -74,6 +74,5 @@ this project's C20 has a worn 23 mm flange so that y^W = -32 mm lies on the trea
 
 ![friction curves and static pressures](validation/contact_positions.png)
 """
-    tmp = DOCS / ".31_contact_positions.md.tmp"
-    tmp.write_text(text)
-    os.replace(tmp, DOCS / "31_contact_positions.md")
+    with atomic_write(DOCS / "31_contact_positions.md") as tmp:
+        tmp.write_text(text)

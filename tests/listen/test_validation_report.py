@@ -253,12 +253,11 @@ def write() -> tuple[str, dict | None]:
 @pytest.mark.validation
 def test_listening_validation_report():
     text, m = write()
-    assert "## Listening" in text
     if m is None:
         pytest.skip("the default case's radiate artifact is not available")
     a = m["a"]
-    if not bool(a["meaningful"]):
-        pytest.skip(f"the default case does not squeal with the current artifacts (L_F2 = {float(a['L_F2']):.1f} dB)")
+    # the default case squeals (README): a silent default is a failure, not a reason to skip
+    assert bool(a["meaningful"]), f"the default case does not squeal with the current artifacts (L_F2 = {float(a['L_F2']):.1f} dB)"
     assert abs(m["f_wav"] / float(a["f_sound"]) - 1) < 0.005
     assert abs(m["L_wav"] - float(a["L_p"])) < 0.5
     assert abs(m["bsum"] - float(a["L_p"])) < 0.1

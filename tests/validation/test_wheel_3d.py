@@ -32,6 +32,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from pipeline.artifacts import atomic_write
 from geometry.outline import Segment
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -398,9 +399,8 @@ def test_harmonic_vs_3d_wheel(tmp_path):
     study = run_study()
     md = markdown(study)
     out = Path(__file__).resolve().parents[2] / "docs" / "validation" / "22_wheel_3d.md"
-    tmp = out.with_name("." + out.name + ".tmp")
-    tmp.write_text(md)
-    os.replace(tmp, out)
+    with atomic_write(out) as tmp:
+        tmp.write_text(md)
     print("\n" + md)
     fine = study.runs[-1]
     for r in fine["rows"]:

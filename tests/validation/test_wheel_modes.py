@@ -9,13 +9,13 @@
 from __future__ import annotations
 
 import copy
-import os
 import time
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+from pipeline.artifacts import atomic_write
 from pipeline.wheel_stage import load_wheel, modes_for_parameters, reference_rows
 from postprocess.mode_reference import markdown_table, match_modes, summary
 
@@ -27,10 +27,8 @@ pytestmark = pytest.mark.validation
 
 
 def _write(name: str, text: str) -> None:
-    DOCS.mkdir(parents=True, exist_ok=True)
-    tmp = DOCS / f".{name}.tmp"
-    tmp.write_text(text)
-    os.replace(tmp, DOCS / name)
+    with atomic_write(DOCS / name) as tmp:
+        tmp.write_text(text)
 
 
 def _scaled(p: dict, factor: float) -> dict:
