@@ -47,20 +47,15 @@ RAIL_LAGS = 4096  # moving-kernel length (0.147 s, 2 m at 50 km/h); its decay is
 
 
 def greens_inputs(case: str):
-    from .contact_stage import NOMINAL_POSITIONS
-    from .config import load
-    from .rail_stage import load_rail_params
-    from .schemas import CASE
-    from .wheel_stage import load_wheel
+    from .profiles import case_contact
 
-    c = load(paths.case_file(case), CASE)
-    pw, _ = load_wheel(c["wheel"])
-    pr, _ = load_rail_params(c["rail"])
+    c, pw, pr, geo = case_contact(case)  # the contact point of the profiles, as the contact stage's
+    yw, yr = geo.contact.y_wheel, geo.contact.y_rail
     modes, mprov = artifacts.load_npz(paths.wheel_dir(c["wheel"]) / "modes.npz", "wheel-modes", pw,
                                       make_target=f"modes WHEEL={c['wheel']}")
     _, rprov = artifacts.load_npz(paths.rail_dir(c["rail"]) / "rail.npz", "rail", pr, make_target=f"rail RAIL={c['rail']}")
-    yw, yr = NOMINAL_POSITIONS[round(c["contact"]["dy_wr"], 3)]
     cfg = {"case": {k: c[k] for k in ("contact", "kinematics", "time")}, "wheel_modes": mprov["config_hash"],
+           "running_surfaces": geo.config,
            "rail": rprov["config_hash"], "rail_nt": RAIL_NT, "rail_lags": RAIL_LAGS, "rail_f_max": RAIL_F_MAX,
            "rail_f_taper": RAIL_F_TAPER, "wheel_band_limit": WHEEL_BAND_LIMIT, "wheel_decay_db": WHEEL_DECAY_DB,
            "kropp_taps": KROPP_TAPS, "kropp_fit_tol": KROPP_FIT_TOL}
