@@ -35,7 +35,7 @@ import numpy as np
 
 FLANGE_ANGLE_DEG = 45.0
 FLANGE_HEIGHT = 0.010  # m above the rolling circle: the flange (flange thickness is measured at this height)
-SECOND_WINDOW = 1e-3  # m: separations looked at for a second contact zone
+SECOND_WINDOW = 0.25e-3  # m: separations looked at for a second contact zone (a few static approaches)
 
 
 class FlangeContact(ValueError):

@@ -164,7 +164,7 @@ def check_points(y, z, source: str, lines=None, units: str = "mm") -> None:
     if not SPAN_MM[0] <= span <= SPAN_MM[1]:
         other = "m" if units == "mm" else "mm"
         hint = ""
-        if SPAN_MM[0] <= span * (1e-3 if units == "mm" else 1e3) <= SPAN_MM[1]:
+        if SPAN_MM[0] <= span * (1e3 if units == "mm" else 1e-3) <= SPAN_MM[1]:
             hint = f"; the values look like {other} (units off by 1000): set '# units: {other}'"
         raise ProfileError(source, int(lines[-1]), f"the profile spans {span:g} mm in y (units: {units}), outside "
                            f"the plausible {SPAN_MM[0]:g}-{SPAN_MM[1]:g} mm{hint}")
@@ -242,11 +242,13 @@ def profile_from_text(text: str, source: str, name: str) -> Profile:
 
 
 def format_profile(meta: dict, y, z) -> str:
-    """The text of a profile file (y, z in m, written in mm with 4 decimals);
+    """The text of a profile file (y, z in m, written in mm to 1 nm, so that
+    the curvature of an interpolated generated profile is exact
+    to ~0.1 1/m at 0.25 mm spacing);
     ``meta`` must hold kind and source, units is set to mm."""
     head = {"kind": meta["kind"], "source": meta["source"], "units": "mm"}
     head.update({k: v for k, v in meta.items() if k not in head})
     out = [f"# {k}: {' '.join(str(v).split())}" for k, v in head.items()]
     out.append("y,z")
-    out += [f"{1e3 * a:.4f},{1e3 * b:.4f}" for a, b in zip(np.asarray(y, float), np.asarray(z, float))]
+    out += [f"{1e3 * a:.6f},{1e3 * b:.6f}" for a, b in zip(np.asarray(y, float), np.asarray(z, float))]
     return "\n".join(out) + "\n"

@@ -69,7 +69,8 @@ def static_contact(geo, E: float, nu: float, F_L: float, dx: float):
 
     def grid(a_half, lo, hi):
         nx = int(np.ceil(a_half / dx - 1e-9))
-        return np.arange(-nx, nx + 1) * dx, np.arange(int(np.floor(lo / DY + 1e-9)), int(np.ceil(hi / DY - 1e-9)) + 1) * DY
+        ny0, ny1 = int(np.floor(lo / DY + 1e-9)), int(np.ceil(hi / DY - 1e-9))
+        return np.arange(-nx, nx + 1) * dx, np.arange(ny0, ny1 + 1) * DY
 
     for _ in range(MAX_TRIES):
         x, y = grid(a_half, lo, hi)

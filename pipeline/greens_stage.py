@@ -50,7 +50,7 @@ def greens_inputs(case: str):
     from .profiles import case_contact
 
     c, pw, pr, geo = case_contact(case)  # the contact point of the profiles, as the contact stage's
-    yw, yr = geo.contact.y_wheel, geo.contact.y_rail
+    yw, yr = geo.contact.y_wheel, rail_point(c["rail"], pr, geo.contact.y_rail)  # yr: the rail model's node
     modes, mprov = artifacts.load_npz(paths.wheel_dir(c["wheel"]) / "modes.npz", "wheel-modes", pw,
                                       make_target=f"modes WHEEL={c['wheel']}")
     _, rprov = artifacts.load_npz(paths.rail_dir(c["rail"]) / "rail.npz", "rail", pr, make_target=f"rail RAIL={c['rail']}")
@@ -60,6 +60,28 @@ def greens_inputs(case: str):
            "rail_f_taper": RAIL_F_TAPER, "wheel_band_limit": WHEEL_BAND_LIMIT, "wheel_decay_db": WHEEL_DECAY_DB,
            "kropp_taps": KROPP_TAPS, "kropp_fit_tol": KROPP_FIT_TOL}
     return c, pw, pr, modes, (yw, yr), cfg
+
+
+RAIL_POINT_TOL = 3e-4  # m: the rail model's head point may differ this much from the contact point y^R
+
+
+def rail_point(name: str, pr: dict, y_r: float) -> float:
+    """The rail model's loaded head point for the contact point y^R: the
+    point of the rail file's ``contact.y`` list (mesh nodes of the rail
+    section) within RAIL_POINT_TOL of y^R (signed: the cross receptance
+    changes sign with the side of the head; the rail's receptances vary little
+    over a fraction of a millimetre, thesis section 4.2.2); a ConfigError
+    otherwise."""
+    from .config import ConfigError
+
+    ys = np.asarray(pr["contact"]["y"], float)
+    i = int(np.argmin(np.abs(ys - y_r)))
+    if abs(ys[i] - y_r) > RAIL_POINT_TOL:
+        raise ConfigError(str(paths.rail_file(name)), detail=(
+            f"the contact point y^R = {1e3 * y_r:+.3f} mm of the profiles is {1e3 * abs(ys[i] - y_r):.3f} mm from the "
+            f"nearest rail head point contact.y = {1e3 * ys[i]:+.3f} mm (allowed {1e3 * RAIL_POINT_TOL:.1f} mm): add "
+            f"{y_r:.5f} to contact.y and rebuild the rail (make rail RAIL={name})"))
+    return float(ys[i])
 
 
 def wheel_greens(pw: dict, modes: dict, y_w: float, dt: float) -> dict:

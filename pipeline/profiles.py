@@ -119,7 +119,8 @@ def contact_geometry(name: str, c: dict, pw: dict, pr: dict) -> ContactGeometry:
     except FlangeContact as e:
         raise ConfigError(str(paths.case_file(name)), detail=(
             f"case '{name}', dy_WR = {1e3 * dy:+.1f} mm (wheel profile {wheel.name}, rail profile {rail.name}, "
-            f"c = {1e3 * cc:.2f} mm): {e}")) from None
+            f"c = {1e3 * cc:.2f} mm): {e}; c (contact.rolling_circle_y) places the wheel on the rail and "
+            f"depends on the wheel and the track")) from None
     cfg = dict(desc, inclination=float(inc), rolling_circle_y=float(cc), dy_wr=float(dy))
     return ContactGeometry(wheel, rail, track, pw["tyre"]["rolling_radius"], rc, cfg)
 
@@ -200,8 +201,9 @@ def main(argv=None) -> int:
                                  args.noise))
         else:
             p, h = read_profile(args.name)
-            print(f"{args.name}: {p.kind}, {1e3 * p.y[0]:+.2f} .. {1e3 * p.y[-1]:+.2f} mm, z {1e3 * np.nanmin(p.z):+.3f}"
-                  f" .. {1e3 * np.nanmax(p.z):+.3f} mm; {p.smoothing}; source: {p.source}; hash {h}")
+            print(f"{args.name}: {p.kind}, {1e3 * p.y[0]:+.2f} .. {1e3 * p.y[-1]:+.2f} mm, "
+                  f"z {1e3 * np.nanmin(p.z):+.3f} .. {1e3 * np.nanmax(p.z):+.3f} mm; {p.smoothing}; "
+                  f"source: {p.source}; hash {h}")
     except (ConfigError, OSError) as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
