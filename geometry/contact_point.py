@@ -18,10 +18,10 @@ Contact: wheel point y^W is above track point Y = y^W + shift; the vertical
 separation is  sep(y^W) = -z_W(y^W) - z_T(y^W + shift)  up to a constant, and
 the contact is its global minimum (grid search on the wheel profile's grid,
 then refined by a bounded scalar minimisation on the splines).  The next
-lowest separate contact zone is reported (``second``): the lowest point of
-the region {sep - min(sep) < SECOND_WINDOW} that is not connected to the
-contact; when its extra separation is small the pair is close to two-point
-contact and the contact jumps there as the offset grows.
+lowest other contact zone is reported (``second``): a local minimum of the
+separation behind a ridge, less than SECOND_WINDOW above the contact; when
+its extra separation is below the static approach the loaded contact has two
+patches, and the contact point jumps there as the offset grows.
 
 Flange contact: a contact angle above FLANGE_ANGLE_DEG or a wheel point more
 than FLANGE_HEIGHT above the rolling circle is flange contact, which the
@@ -36,6 +36,7 @@ import numpy as np
 FLANGE_ANGLE_DEG = 45.0
 FLANGE_HEIGHT = 0.010  # m above the rolling circle: the flange (flange thickness is measured at this height)
 SECOND_WINDOW = 0.25e-3  # m: separations looked at for a second contact zone (a few static approaches)
+RIDGE = 1e-5  # m: a second zone is a local minimum behind a ridge at least this high
 
 
 class FlangeContact(ValueError):
@@ -99,19 +100,22 @@ class TrackRail:
         return float(Y * np.cos(self.alpha) + z * np.sin(self.alpha))
 
 
-def second_zone(y, sep, i: int, window: float):
-    """(y, sep - sep[i]) of the lowest point of {sep - sep[i] < window} outside
-    the connected part that contains index i, or None (sep finite or inf)."""
-    low = (sep - sep[i]) < window
-    edges = np.flatnonzero(np.diff(low.astype(np.int8)))
-    lo = edges[edges < i].max() + 1 if np.any(edges < i) else 0
-    hi = edges[edges >= i].min() if np.any(edges >= i) else len(y) - 1
-    other = low.copy()
-    other[lo:hi + 1] = False
-    if not other.any():
-        return None
-    j = np.flatnonzero(other)[np.argmin(sep[other])]
-    return float(y[j]), float(sep[j] - sep[i])
+def second_zone(y, sep, i: int, window: float, ridge: float = RIDGE):
+    """(y, sep - sep[i]) of the lowest other contact zone within ``window``:
+    a local minimum of sep (other than the contact, index i) that is less
+    than ``window`` above sep[i] and separated from it by a ridge rising
+    more than ``ridge`` above that minimum; None if there is none."""
+    sep = np.asarray(sep, float)
+    inner = (sep[1:-1] <= sep[:-2]) & (sep[1:-1] < sep[2:])
+    best = None
+    for j in np.flatnonzero(inner) + 1:
+        extra = sep[j] - sep[i]
+        if j == i or extra >= window or (best is not None and extra >= best[1]):
+            continue
+        lo, hi = sorted((i, j))
+        if np.max(sep[lo:hi + 1]) - sep[j] > ridge:
+            best = (float(y[j]), float(extra))
+    return best
 
 
 def _separation(wheel, rail_t, shift, y):

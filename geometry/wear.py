@@ -18,7 +18,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-GAUGE_RAMP = 0.008  # m of arc length over which gauge-face wear ramps up
+GAUGE_RAMP = 0.012  # m of arc length over which gauge-face wear ramps up (over the gauge corner)
 MAX_ANGLE_DEG = 75.0  # the tabulated running profile ends where the slope exceeds this
 
 

@@ -82,12 +82,14 @@ def calibrate(seed: int = 1) -> dict:
     ww, rw = split(res["x"])
     pars = ", ".join(f"{k} = {1e3 * v:.3f} mm" for k, v in res["params"].items())
     found = ", ".join(f"{1e3 * dy:+.0f} mm -> {1e3 * y:+.2f} mm (moves {1e3 * res['moves'][dy]:.1f} mm for +-0.5 mm "
-                      "of offset)" for dy, y in res["contacts"].items())
+                      f"of offset; other zones >= {1e3 * res['margins'][dy]:.2f} mm higher)"
+                      for dy, y in res["contacts"].items())
     common = {"calibrated_by": "pipeline/calibrate_profiles.py (make calibrate), geometry/calibration.py",
               "calibrated_to": "thesis [4.1] wheel contact points y^W = +5, -4, -32 mm at dy_WR = -5, -10, -15 mm "
                                "(rigid contact, c = 17/3 mm, BV50 inclined 1:30); NOT to patch sizes",
               "wear_parameters": pars, "fit_contact_points": found,
-              "fit_objective": f"{res['objective']:.4f} (seed {seed}, {res['evaluations']} evaluations)",
+              "fit_objective": f"{res['objective']:.4f} (seed {seed}, {res['evaluations']} evaluations); worn head "
+                               f"curvature <= {res['rail_kappa_max']:+.3f} 1/m on |y| < 22 mm (kept convex)",
               "noise_mm": 0}
     yw, zw = worn_wheel(new.y, new.z, ww)
     write_profile("c20_worn", {"kind": "wheel", "source": "C20 (c20_new) with calibrated hollow tread wear "

@@ -134,7 +134,7 @@ def test_three_positions_from_the_profiles():
         a, m = r["a"], r["m"]
         yw, yr = THESIS_POSITIONS[r["c"]["contact"]["dy_wr"]]
         i03 = int(np.argmin(abs(a["mu_values"] - 0.3)))
-        rad = lambda k: f"{1e3 / k:+.0f}" if abs(k) > 1e-3 else "inf"  # noqa: E731
+        rad = lambda k: f"{-1e3 / k:+.0f}" if abs(k) > 1e-3 else "inf"  # noqa: E731 (+ convex)
         rows.append(f"| {1e3 * r['c']['contact']['dy_wr']:.0f} mm | {1e3 * a['y_wheel']:+.2f} / {1e3 * yw:+.0f} | "
                     f"{1e3 * a['y_rail']:+.2f} / {1e3 * yr:+.0f} | {np.degrees(a['contact_angle']):+.1f} deg | "
                     f"{rad(a['curvature_wheel'])} / {rad(a['curvature_rail'])} | {len(a['x'])} x {len(a['y'])} | "
@@ -142,6 +142,22 @@ def test_three_positions_from_the_profiles():
                     f"{m['ratio']:.2f} | {m['p_max'] / 1e9:.2f} | {1e6 * a['xi3_static']:.1f} | "
                     f"{a['rf_gamma_sat'][i03]:.4f} |")
     w = read_profile("c20_worn")[0]
+    GAUGE = 1.435  # m, standard gauge (measured 14 mm below the crown, on the head's vertical side here)
+    from pipeline.rail_stage import load_rail_params
+    from pipeline.wheel_stage import load_wheel
+
+    half_head = 0.5 * load_rail_params("bv50")[0]["head"]["width"]
+    z_rc = load_wheel("c20")[0]["axle"]["rolling_circle_z"]
+    rail_centre = GAUGE / 2 + half_head
+    c_geo = z_rc - rail_centre
+    dyr = max(abs(r["a"]["y_rail"] + THESIS_POSITIONS[r["c"]["contact"]["dy_wr"]][1]) for r in res.values())
+    import re
+
+    from geometry.calibration import BOUNDS, NAMES
+
+    par = {k: 1e-3 * float(v) for k, v in re.findall(r"(\w+) = ([-\d.]+) mm", w.meta["wear_parameters"])}
+    at_bound = [f"{k} = {1e3 * par[k]:g} mm (range {1e3 * lo:g} .. {1e3 * hi:g})" for k, (lo, hi) in zip(NAMES, BOUNDS)
+                if min(abs(par[k] - lo), abs(par[k] - hi)) < 2e-6]
     jtxt = "; ".join(f"between {1e3 * d0:.2f} and {1e3 * d1:.2f} mm from y^W = {1e3 * y0:+.1f} to {1e3 * y1:+.1f} mm"
                      for d0, y0, d1, y1 in jumps if y1 is not None)
     text = f"""## Contact at the three positions from the profiles (C20 on BV50, worn)
@@ -162,8 +178,8 @@ two positions).
 Patch area from {1e6 * area.min():.0f} to {1e6 * area.max():.0f} mm^2 ({area.max() / area.min():.2f} x), length/width
 from {ratio.min():.2f} to {ratio.max():.2f} ({ratio.max() / ratio.min():.2f} x). With the former nominal surfaces
 (1:40 cone on the R300/R80/R13 head at the tabulated points) the three patches were the same (47 x 17 grid,
-207-216 elements, p_max 1.87-1.89 GPa): the R80 shoulder under a cone at all three points. Radii: + convex,
-- concave (wheel: r - r0 along y^W; rail: track frame).
+207-216 elements, p_max 1.87-1.89 GPa): the R80 shoulder under a cone at all three points. Lateral radii of the
+profiles at the contact: + convex, - concave (each body seen from the other).
 
 ![profiles and contact points](validation/contact_positions_profiles.png)
 
@@ -180,8 +196,13 @@ This project keeps SPEC 2's axes (y^W and y^R both + toward the field side): its
 sign flipped (the gauge side is negative), and the greens stage evaluates the rail at that point (the rail's
 vertical-lateral cross receptance changes sign with the side of the head). The other reading -- the table's y^W
 flipped instead (contact moving toward the field side of the tread as the wheelset moves, as on the inner wheel
-in a curve) -- is equally consistent with the numbers; it was not used because SPEC 2 and the C20 fit place
-y^W = -32 mm near the flange root.
+in a curve) -- is equally consistent with the numbers (c = -5.67 mm then); it was not used because SPEC 2 and
+the C20 fit place y^W = -32 mm near the flange root. A plausibility check of c from the geometry: on 1435 mm
+track (gauge face {1e3 * GAUGE / 2:.1f} mm from the track centre, BV50 head half-width {1e3 * half_head:.1f} mm: rail
+centre at {1e3 * rail_centre:.1f} mm) the C20's rolling circle ({1e3 * z_rc:.1f} mm from the wheelset centre) lies
+at c = {1e3 * c_geo:+.1f} mm for the centred wheelset; the reading used here needs c = +5.67 mm, the other
+-5.67 mm. With c = +5.67 mm the C20's worn 23 mm flange clears the rail at dy_WR = -15 mm only because the
+calibrated head has gauge-face wear (below).
 
 ### Calibrated vs predicted
 
@@ -189,13 +210,23 @@ Calibrated (fitted, `make calibrate`, `pipeline/calibrate_profiles.py` + `geomet
 three wheel points y^W of [4.1], nothing else): the 8 wear parameters -- `{w.meta['wear_parameters']}`; fitted
 points `{w.meta['fit_contact_points']}`; objective {w.meta['fit_objective']}. Derived from the table itself, not
 fitted: c = 17/3 mm. Inputs: the new C20 tread and BV50 head, the 1:30 rail inclination (Swedish track practice,
-as recalled). Predictions (not fitted): the rail points y^R (within 0.7 mm of the table), the contact angles,
-radii, gaps, patch sizes and shapes, pressures and friction curves above.
+as recalled). Wear model (`geometry/wear.py`): the new profile moved inward along its normal by C2 depth
+functions -- a hollow band on the tread; on the head a top band and gauge-face wear that ramps up over 12 mm of
+arc length from `gauge_start` (at least 20 mm from the crown centre, i.e. from the outer shoulder: a fit that
+starts the wear only at the gauge-corner arc (24 mm) leaves the -15 mm position in flange contact). Parameters
+at a bound of their range: {', '.join(at_bound) or 'none'}. The objective adds 0.05 x the squared depths
+(mm^2):
+the least wear that puts the contact at the three points, so the worn shapes are one possible pair, not a
+reconstruction of the measured profiles. Constraints of the fit besides the targets: each fitted point moves
+< 3 mm for +-0.5 mm of offset (not at the brink of a jump), any other contact zone lies >= 0.15 mm further from
+the rail (one patch under the static load), the worn head stays convex on |y^R| < 22 mm. Predictions (not
+fitted): the rail points y^R (within {1e3 * dyr:.2f} mm of the table), the contact angles, radii, gaps, patch
+sizes and shapes, pressures and friction curves above.
 
 Checks the calibration was not fitted to (chosen: intermediate offsets and the jump; also the equivalent conicity):
 - the contact point moves monotonically toward the flange from -5 to -15 mm; -7.5 and -12.5 mm lie between
   their neighbours (`tests/profiles/test_calibration.py`); it jumps once, {jtxt} (tread to the flange-root side
-  of the hollow; the fit only asked that each fitted point survive +-0.5 mm of offset); flange contact from
+  of the hollow); flange contact from
   dy_WR = {1e3 * first_flange:.2f} mm;
 - equivalent conicity Delta r / 2u at u = 3 mm (symmetric wheelset, same c): worn pair {lam['worn pair']:+.3f},
   new pair {lam['new pair']:+.3f}. Measured worn profiles usually show a higher conicity than new ones (Polach &
