@@ -59,29 +59,30 @@ def greens_inputs(case: str):
            "rail": rprov["config_hash"], "rail_nt": RAIL_NT, "rail_lags": RAIL_LAGS, "rail_f_max": RAIL_F_MAX,
            "rail_f_taper": RAIL_F_TAPER, "wheel_band_limit": WHEEL_BAND_LIMIT, "wheel_decay_db": WHEEL_DECAY_DB,
            "kropp_taps": KROPP_TAPS, "kropp_fit_tol": KROPP_FIT_TOL}
-    return c, pw, pr, modes, (yw, yr), cfg
+    return c, pw, pr, modes, (yw, yr, geo.contact.y_rail), cfg
 
 
-RAIL_POINT_TOL = 4e-4  # m: the rail model's head point may differ this much from the contact point y^R
+RAIL_POINT_TOL = 1e-3  # m: the rail model's head node may lie this far from the contact point y^R
 
 
 def rail_point(name: str, pr: dict, y_r: float) -> float:
-    """The rail model's loaded head point for the contact point y^R: the
-    point of the rail file's ``contact.y`` list (mesh nodes of the rail
-    section) within RAIL_POINT_TOL of y^R (signed: the cross receptance
-    changes sign with the side of the head; the rail's receptances vary little
-    over a fraction of a millimetre, thesis section 4.2.2); a ConfigError
+    """The rail model's loaded head point for the contact point y^R of the
+    profiles: on the same side of the head as y^R (the vertical-lateral cross
+    receptance changes sign with the side), at the node |y| of the rail file's
+    ``contact.y`` list (mesh nodes of the rail section) nearest to |y^R|,
+    within RAIL_POINT_TOL (the rail's receptances change little with the
+    lateral position on the head, thesis section 4.2.2); a ConfigError
     otherwise."""
     from .config import ConfigError
 
-    ys = np.asarray(pr["contact"]["y"], float)
-    i = int(np.argmin(np.abs(ys - y_r)))
-    if abs(ys[i] - y_r) > RAIL_POINT_TOL:
+    ys = np.unique(np.abs(np.asarray(pr["contact"]["y"], float)))
+    i = int(np.argmin(np.abs(ys - abs(y_r))))
+    if abs(ys[i] - abs(y_r)) > RAIL_POINT_TOL:
         raise ConfigError(str(paths.rail_file(name)), detail=(
-            f"the contact point y^R = {1e3 * y_r:+.3f} mm of the profiles is {1e3 * abs(ys[i] - y_r):.3f} mm from the "
-            f"nearest rail head point contact.y = {1e3 * ys[i]:+.3f} mm (allowed {1e3 * RAIL_POINT_TOL:.1f} mm): add "
-            f"{y_r:.5f} to contact.y and rebuild the rail (make rail RAIL={name})"))
-    return float(ys[i])
+            f"the contact point y^R = {1e3 * y_r:+.3f} mm of the profiles is {1e3 * abs(ys[i] - abs(y_r)):.3f} mm from "
+            f"the nearest rail head node |y| = {1e3 * ys[i]:.3f} mm of contact.y (allowed {1e3 * RAIL_POINT_TOL:.1f} "
+            f"mm): add {y_r:.5f} to contact.y and rebuild the rail (make rail RAIL={name})"))
+    return float(np.copysign(ys[i], y_r))
 
 
 def wheel_greens(pw: dict, modes: dict, y_w: float, dt: float) -> dict:
@@ -155,10 +156,11 @@ def rail_taper(f) -> np.ndarray:
 
 
 def run_greens(case: str) -> dict:
-    c, pw, pr, modes, (yw, yr), cfg = greens_inputs(case)
+    c, pw, pr, modes, (yw, yr, y_rail_contact), cfg = greens_inputs(case)
     dt, v = c["time"]["dt"], c["kinematics"]["speed"]
     t0 = time.perf_counter()
-    arrays = {"dt": np.float64(dt), "v": np.float64(v), "y_wheel": np.float64(yw), "y_rail": np.float64(yr)}
+    arrays = {"dt": np.float64(dt), "v": np.float64(v), "y_wheel": np.float64(yw), "y_rail": np.float64(yr),
+              "y_rail_contact": np.float64(y_rail_contact)}
     arrays.update(wheel_greens(pw, modes, yw, dt))
     t1 = time.perf_counter()
     arrays.update(rail_greens(pr, yr, v, dt))
