@@ -27,15 +27,16 @@ GEOMETRY_SRC := geometry/wheel.py geometry/outline.py geometry/mesher.py
 MODES_SRC    := solvers/axisym.py solvers/classify.py solvers/wheelset.py pipeline/wheel_stage.py
 SHAPES_SRC   := postprocess/mode_shapes.py
 RAIL_SRC     := geometry/rail.py geometry/mesher.py solvers/waveguide.py solvers/rail_response.py pipeline/rail_stage.py
-CONTACT_SRC  := $(wildcard solvers/contact/*.py) pipeline/contact_stage.py geometry/wheel.py geometry/rail.py
-GREENS_SRC   := solvers/green.py solvers/receptance.py solvers/rail_response.py solvers/moving_kernel.py pipeline/rail_kernel.py pipeline/greens_stage.py
+PROFILE_SRC  := pipeline/profiles.py geometry/profiles.py geometry/contact_point.py geometry/standard_profiles.py $(wildcard geometry/profiles/*.csv)
+CONTACT_SRC  := $(wildcard solvers/contact/*.py) pipeline/contact_stage.py geometry/wheel.py geometry/rail.py $(PROFILE_SRC)
+GREENS_SRC   := solvers/green.py solvers/receptance.py solvers/rail_response.py solvers/moving_kernel.py pipeline/rail_kernel.py pipeline/greens_stage.py $(WFILE) $(RFILE) $(PROFILE_SRC)
 SIM_SRC      := solvers/interaction.py solvers/green.py solvers/partitioned.py pipeline/simulate_stage.py postprocess/spectra.py
 STAB_SRC     := solvers/stability.py solvers/interaction.py solvers/green.py solvers/partitioned.py pipeline/stability_stage.py
-RADIATE_SRC  := postprocess/radiation.py postprocess/force_radiation.py postprocess/spectra.py solvers/receptance.py geometry/wheel.py pipeline/radiate_stage.py
+RADIATE_SRC  := postprocess/radiation.py postprocess/force_radiation.py postprocess/spectra.py solvers/receptance.py geometry/wheel.py pipeline/radiate_stage.py $(RFILE) $(PROFILE_SRC)
 LISTEN_SRC   := postprocess/listener.py postprocess/audio.py postprocess/spectra.py pipeline/listen_stage.py pipeline/listen_plot.py
 
 .DEFAULT_GOAL := all
-.PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate stability stability-map listen report study check clean distclean FORCE
+.PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate stability stability-map listen report study check calibrate clean distclean FORCE
 .DELETE_ON_ERROR:
 
 all: report ## run the default case as far as the stages exist (wheel, rail, contact, greens, simulate, radiate, report)
@@ -126,6 +127,10 @@ study: | $(STAMP) ## parameter study STUDY=map|damping|contact on Dask -> build/
 stability-map: | $(STAMP) ## the stability screen over STUDY's grid (seconds; needs the cases' contact and greens) [QUICK=1]
 	@for c in $(STUDY_CASES); do $(MAKE) --no-print-directory contact greens CASE=$$c || exit 1; done
 	$(PY) -m pipeline stability_map --study $(STUDY) $(if $(QUICK),--quick)
+
+# --- profiles: the standard profiles and the worn C20/BV50 pair fitted to the thesis' contact points
+calibrate: | $(STAMP) ## write geometry/profiles/ (S1002, C20, BV50, 60E1 new; C20 and BV50 worn, calibrated to thesis [4.1])
+	$(PY) -m pipeline.calibrate_profiles
 
 # --- quality
 test: | $(STAMP) ## run the test suite (fast; validation tests are skipped)

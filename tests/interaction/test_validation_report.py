@@ -40,23 +40,18 @@ def _plt():
 def build_contact(dy_mm: int, dt: float, mu: float = MU):
     """The contact of a nominal position at the grid dx = v dt: the contact stage's computation
     (pipeline/contact_stage.build_contact) for one friction coefficient."""
-    from pipeline.contact_stage import DY, NOMINAL_POSITIONS, contact_inputs, profiles
+    from pipeline.contact_stage import DY, static_contact
+    from pipeline.profiles import case_contact, contact_geometry
     from solvers.contact.compliance import compliance_table
     from solvers.contact.friction import rf_curve
-    from solvers.contact.norm import approach_for_load, norm_table
-    from solvers.contact.surfaces import contact_gap, contact_grid, curvatures
+    from solvers.contact.norm import norm_table
 
-    c, pw, pr, _ = contact_inputs("default")
+    c, pw, pr, _ = case_contact("default")
+    c["contact"]["dy_wr"] = dy_mm * 1e-3
+    geo = contact_geometry("default", c, pw, pr)  # the contact point of the profiles, as the contact stage's
     E, nu = pw["material"]["E"], pw["material"]["nu"]
-    yw, yr = NOMINAL_POSITIONS[round(dy_mm * 1e-3, 3)]
     dx = V * dt
-    r_wheel, z_rail = profiles(pw, pr)
-    A, B = curvatures(r_wheel, z_rail, yw, yr)
-    Estar = E / (2 * (1 - nu ** 2))
-    c_eq = (3 * PRELOAD * 0.5 / np.sqrt(A * B) / (4 * Estar)) ** (1 / 3)
-    x, y = contact_grid(c_eq * (B / A) ** (1 / 3), c_eq * (A / B) ** (1 / 3), dx, DY)
-    gap = contact_gap(r_wheel, z_rail, yw, yr, x, y)
-    xi_s, static = approach_for_load(PRELOAD, gap, dx, DY, E, nu)
+    x, y, gap, _, _, xi_s, static = static_contact(geo, E, nu, PRELOAD, dx)
     nodes = np.linspace(0.0, 2.0 * xi_s, 41)
     t = norm_table(gap, nodes, dx, DY, E, nu)
     A1, A2 = compliance_table(nodes, t.p, dx, DY, E, nu)
