@@ -9,10 +9,14 @@ rail inclination alpha (the head tilted toward the track centre, i.e. toward
 -y, so its surface rises toward the field side by tan(alpha) at the crown
 top) about the crown top; the wheelset does not roll, so the wheel profile is
 already in the track frame.  The wheel's y^W = 0 (rolling circle) lies at
-track-frame position ``shift`` = c - dy_WR over the rail centre line, where c
-is the rolling circle's position over the rail centre for the centred
-wheelset (docs/validation/31_contact_positions.md: the thesis table implies
-c = 5.7 mm).
+track-frame position ``shift`` = c + dy_WR over the rail centre line
+(``wheel_shift``), where c is the rolling circle's position over the rail
+centre for the centred wheelset: y^W and y^R both + toward the field side
+(SPEC 2), so a wheelset moved by dy_WR moves every wheel point by dy_WR over
+the rail, Y = y^W + c + dy_WR.  Thesis [4.1] fits this with c = -17/3 mm once
+its printed y^W (positive toward the flange) is negated
+(``solvers.constants.THESIS_CONTACT_POINTS_FIELD``,
+docs/validation/31_contact_positions.md).
 
 Contact: wheel point y^W is above track point Y = y^W + shift; the vertical
 separation is  sep(y^W) = -z_W(y^W) - z_T(y^W + shift)  up to a constant, and
@@ -118,6 +122,12 @@ def second_zone(y, sep, i: int, window: float, ridge: float = RIDGE):
     return best
 
 
+def wheel_shift(c: float, dy_wr: float) -> float:
+    """Track-frame position (m, + field side) of the wheel's rolling circle
+    for the wheelset offset dy_WR (m): c + dy_WR (Y = y^W + shift)."""
+    return float(c) + float(dy_wr)
+
+
 def _separation(wheel, rail_t, shift, y):
     s = -np.asarray(wheel(y)) - np.asarray(rail_t(np.asarray(y) + shift))
     return np.where(np.isfinite(s), s, np.inf)
@@ -155,12 +165,12 @@ def rigid_contact(wheel, rail_t: TrackRail, shift: float) -> RigidContact:
 
 
 def contact_sweep(wheel, rail_t: TrackRail, c: float, offsets) -> list:
-    """Rigid contacts for several wheelset offsets dy_WR (shift = c - dy);
+    """Rigid contacts for several wheelset offsets dy_WR (``wheel_shift``);
     a FlangeContact becomes None in the list."""
     out = []
     for dy in offsets:
         try:
-            out.append(rigid_contact(wheel, rail_t, c - dy))
+            out.append(rigid_contact(wheel, rail_t, wheel_shift(c, dy)))
         except FlangeContact:
             out.append(None)
     return out

@@ -8,7 +8,8 @@
 2. The worn pair: the wear parameters of ``geometry.calibration`` fitted so
    that the rigid contact of the worn C20 on the worn BV50 (1:30 inclined,
    c from the thesis table) reproduces the wheel contact points of thesis
-   [4.1]; written to ``c20_worn.csv`` and ``bv50_worn.csv`` with a header
+   [4.1] in the project's convention (y^W = -printed: -5, +4, +32 mm;
+   ``solvers.constants.THESIS_CONTACT_POINTS_FIELD``); written to ``c20_worn.csv`` and ``bv50_worn.csv`` with a header
    saying what they were calibrated to, by what, and the fitted numbers.
    The fit is seeded: a rerun writes the same files.
 """
@@ -85,8 +86,9 @@ def calibrate(seed: int = 1) -> dict:
                       f"of offset; other zones >= {1e3 * res['margins'][dy]:.2f} mm higher)"
                       for dy, y in res["contacts"].items())
     common = {"calibrated_by": "pipeline/calibrate_profiles.py (make calibrate), geometry/calibration.py",
-              "calibrated_to": "thesis [4.1] wheel contact points y^W = +5, -4, -32 mm at dy_WR = -5, -10, -15 mm "
-                               "(rigid contact, c = 17/3 mm, BV50 inclined 1:30); NOT to patch sizes",
+              "calibrated_to": "thesis [4.1] wheel contact points y^W = -5, +4, +32 mm (field-positive: the printed "
+                               "+5, -4, -32 negated) at dy_WR = -5, -10, -15 mm (rigid contact, Y = y^W + c + dy_WR, "
+                               "c = -17/3 mm, BV50 inclined 1:30); NOT to the rail points y^R, NOT to patch sizes",
               "wear_parameters": pars, "fit_contact_points": found,
               "fit_objective": f"{res['objective']:.4f} (seed {seed}, {res['evaluations']} evaluations); worn head "
                                f"curvature <= {res['rail_kappa_max']:+.3f} 1/m on |y| < 22 mm (kept convex)",

@@ -52,7 +52,8 @@ def greens_inputs(case: str):
     from .profiles import case_contact
 
     c, pw, pr, geo = case_contact(case)  # the contact point of the profiles, as the contact stage's
-    yw, yr = geo.contact.y_wheel, rail_point(c["rail"], pr, geo.contact.y_rail)  # yr: the rail model's node
+    where = f"case '{case}', dy_WR = {1e3 * c['contact']['dy_wr']:+.1f} mm (y^W = {1e3 * geo.contact.y_wheel:+.2f} mm)"
+    yw, yr = geo.contact.y_wheel, rail_point(c["rail"], pr, geo.contact.y_rail, where)  # yr: the rail model's node
     modes, mprov = artifacts.load_npz(paths.wheel_dir(c["wheel"]) / "modes.npz", "wheel-modes", pw,
                                       make_target=f"modes WHEEL={c['wheel']}")
     rprov = _rail_provenance(c["rail"], pr)
@@ -67,23 +68,24 @@ def greens_inputs(case: str):
 RAIL_POINT_TOL = 1e-3  # m: the rail model's head node may lie this far from the contact point y^R
 
 
-def rail_point(name: str, pr: dict, y_r: float) -> float:
+def rail_point(name: str, pr: dict, y_r: float, where: str = "") -> float:
     """The rail model's loaded head point for the contact point y^R of the
     profiles: on the same side of the head as y^R (the vertical-lateral cross
     receptance changes sign with the side), at the node |y| of the rail file's
     ``contact.y`` list (mesh nodes of the rail section) nearest to |y^R|,
     within RAIL_POINT_TOL (the rail's receptances change little with the
-    lateral position on the head, thesis section 4.2.2); a ConfigError
-    otherwise."""
+    lateral position on the head, thesis section 4.2.2); a one-line
+    ConfigError otherwise (``where``: the case and offset it names)."""
     from .config import ConfigError
 
     ys = np.unique(np.abs(np.asarray(pr["contact"]["y"], float)))
     i = int(np.argmin(np.abs(ys - abs(y_r))))
     if abs(ys[i] - abs(y_r)) > RAIL_POINT_TOL:
         raise ConfigError(str(paths.rail_file(name)), detail=(
-            f"the contact point y^R = {1e3 * y_r:+.3f} mm of the profiles is {1e3 * abs(ys[i] - abs(y_r)):.3f} mm from "
-            f"the nearest rail head node |y| = {1e3 * ys[i]:.3f} mm of contact.y (allowed {1e3 * RAIL_POINT_TOL:.1f} "
-            f"mm): add {y_r:.5f} to contact.y and rebuild the rail (make rail RAIL={name})"))
+            (f"{where}: " if where else "") + f"the rail model has no receptance at the contact point y^R = "
+            f"{1e3 * y_r:+.3f} mm of the profiles, {1e3 * abs(ys[i] - abs(y_r)):.3f} mm from the nearest rail "
+            f"head node |y| = {1e3 * ys[i]:.3f} mm of contact.y (allowed {1e3 * RAIL_POINT_TOL:.1f} mm): "
+            f"add {y_r:.5f} to contact.y and rebuild the rail (make rail RAIL={name})"))
     return float(np.copysign(ys[i], y_r))
 
 

@@ -6,8 +6,9 @@ when given, else the wheel file's and the rail file's
 ``running_surface.profile`` (a file ``geometry/profiles/<name>.csv``), else
 the parametric running surface of the wheel file (cone + flange) or the rail
 file (head arcs).  The rail is turned by ``running_surface.inclination`` into
-the track frame; the wheel's rolling circle lies at c - dy_WR over the rail
-centre (c = ``contact.rolling_circle_y``), and the contact point is the rigid
+the track frame; the wheel's rolling circle lies at c + dy_WR over the rail
+centre (c = ``contact.rolling_circle_y``; y^W and y^R both + toward the field
+side, ``geometry.contact_point.wheel_shift``), and the contact point is the rigid
 contact of the two profiles there (``geometry.contact_point``).
 
 Command line (import a measured profile into the project's format)::
@@ -108,14 +109,14 @@ def contact_geometry(name: str, c: dict, pw: dict, pr: dict) -> ContactGeometry:
     """Profiles and rigid contact point of a loaded case; flange contact or
     profiles that do not meet are a one-line ConfigError naming the case,
     its offset and why."""
-    from geometry.contact_point import FlangeContact, TrackRail, rigid_contact
+    from geometry.contact_point import FlangeContact, TrackRail, rigid_contact, wheel_shift
 
     wheel, rail, desc = case_profiles(c, pw, pr)
     inc = pr.get("running_surface", {}).get("inclination", 0.0) or 0.0
     cc, dy = c["contact"]["rolling_circle_y"], c["contact"]["dy_wr"]
     track = TrackRail(rail, inc)
     try:
-        rc = rigid_contact(wheel, track, cc - dy)
+        rc = rigid_contact(wheel, track, wheel_shift(cc, dy))
     except FlangeContact as e:
         raise ConfigError(str(paths.case_file(name)), detail=(
             f"case '{name}', dy_WR = {1e3 * dy:+.1f} mm (wheel profile {wheel.name}, rail profile {rail.name}, "

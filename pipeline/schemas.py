@@ -115,10 +115,10 @@ CASE = {
         "dy_wr": Field(float, unit="m", min=-0.03, max=0.03,
                        doc="wheelset lateral offset; the contact point is the rigid contact of the profiles "
                            "(SPEC 2: -0.005, -0.010, -0.015)"),
-        "rolling_circle_y": Field(float, unit="m", min=-0.03, max=0.03, default=0.0056667,
+        "rolling_circle_y": Field(float, unit="m", min=-0.03, max=0.03, default=-0.0056667,
                                   doc="c: the wheel's rolling circle over the rail centre line (+ field side) for "
-                                      "the centred wheelset; 17/3 mm follows from the thesis table [4.1] "
-                                      "(geometry/calibration.py)"),
+                                      "the centred wheelset (Y = y^W + c + dy_wr); -17/3 mm follows from the "
+                                      "thesis table [4.1] with its y^W negated (solvers.constants)"),
         "wheel_profile": Field(str, default=None, doc="overrides the wheel file's running_surface.profile"),
         "rail_profile": Field(str, default=None, doc="overrides the rail file's running_surface.profile"),
         "model": Field(str, choices=["point", "kalker"], default="point",
