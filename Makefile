@@ -43,6 +43,8 @@ export OMP_NUM_THREADS ?= 1
 # Each stage's sources, DEPS_<stage>: the repository files its code reaches, computed from the
 # imports by pipeline/deps.py into $(BUILD)/deps.mk, regenerated when a package's .py changes.
 DEPS_MK  := $(BUILD)/deps.mk
+# the running-surface profiles: data the contact point of every case stage comes from
+PROFILES := $(wildcard geometry/profiles/*.csv)
 PKG_PY   := $(filter-out tests/% benchmarks/%,$(wildcard */*.py */*/*.py */*/*/*.py))
 ifeq ($(filter clean distclean help,$(MAKECMDGOALS)),)
 include $(DEPS_MK)
@@ -52,7 +54,7 @@ $(DEPS_MK): $(PKG_PY)
 	$(DEPS_PY) pipeline/deps.py > $@.tmp && mv $@.tmp $@ || { rm -f $@.tmp; exit 1; }
 
 .DEFAULT_GOAL := all
-.PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate stability stability-map listen report study check clean distclean FORCE
+.PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate stability stability-map listen report study check calibrate clean distclean FORCE
 .DELETE_ON_ERROR:
 
 all: report ## run the default case as far as the stages exist (wheel, rail, contact, greens, simulate, radiate, report)
@@ -96,16 +98,16 @@ $(W)/shapes/gallery.png: $(W)/modes.npz $(WFILE) $(DEPS_shapes) | $(STAMP)
 $(R)/rail.npz: $(RFILE) $(DEPS_rail) | $(STAMP)
 	$(PY) -m pipeline rail --rail $(RAIL)
 
-$(C)/contact.npz: $(CFILE) $(WFILE) $(RFILE) $(DEPS_contact) | $(STAMP)
+$(C)/contact.npz: $(CFILE) $(WFILE) $(RFILE) $(PROFILES) $(DEPS_contact) | $(STAMP)
 	$(PY) -m pipeline contact --case $(CASE)
 
-$(C)/greens.npz: $(CFILE) $(WFILE) $(RFILE) $(W)/modes.npz $(R)/rail.npz $(DEPS_greens) | $(STAMP)
+$(C)/greens.npz: $(CFILE) $(WFILE) $(RFILE) $(PROFILES) $(W)/modes.npz $(R)/rail.npz $(DEPS_greens) | $(STAMP)
 	$(PY) -m pipeline greens --case $(CASE)
 
 $(C)/simulate.npz: $(CFILE) $(WFILE) $(RFILE) $(C)/contact.npz $(C)/greens.npz $(DEPS_simulate) | $(STAMP)
 	$(PY) -m pipeline simulate --case $(CASE)
 
-$(C)/radiate.npz: $(CFILE) $(WFILE) $(RFILE) $(W)/modes.npz $(C)/simulate.npz $(DEPS_radiate) | $(STAMP)
+$(C)/radiate.npz: $(CFILE) $(WFILE) $(RFILE) $(PROFILES) $(W)/modes.npz $(C)/simulate.npz $(DEPS_radiate) | $(STAMP)
 	$(PY) -m pipeline radiate --case $(CASE)
 
 $(C)/stability.npz: $(CFILE) $(WFILE) $(RFILE) $(C)/contact.npz $(C)/greens.npz $(DEPS_stability) | $(STAMP)
@@ -143,6 +145,10 @@ study: | $(STAMP) ## parameter study STUDY=map|damping|contact on Dask -> build/
 stability-map: | $(STAMP) ## the stability screen over STUDY's grid (seconds; needs the cases' contact and greens) [QUICK=1]
 	@for c in $(STUDY_CASES); do $(MAKE) --no-print-directory contact greens CASE=$$c || exit 1; done
 	$(PY) -m pipeline stability_map --study $(STUDY) $(if $(QUICK),--quick)
+
+# --- profiles: the standard profiles and the worn C20/BV50 pair fitted to the thesis' contact points
+calibrate: | $(STAMP) ## write geometry/profiles/ (S1002, C20, BV50, 60E1 new; C20 and BV50 worn, calibrated to thesis [4.1])
+	$(PY) -m pipeline.calibrate_profiles
 
 # --- quality
 test: | $(STAMP) ## run the test suite (fast; validation tests are skipped)

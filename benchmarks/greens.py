@@ -15,6 +15,7 @@ import numpy as np
 
 from benchmarks.timing import median_time
 
+from solvers.constants import thesis_contact_point
 from solvers.green import (choose_grid, convolve_direct, convolve_fft, filter_history, green_from_receptance,
                            modal_filter, modal_kernel, moving_green, ring_convolver, ring_step)
 from solvers.receptance import wheel_receptance
@@ -37,7 +38,7 @@ def _ring_loop(rc, F):
 
 def run() -> str:
     rows = []
-    w = wheel_case(-0.032)
+    w = wheel_case(thesis_contact_point(-0.015)[0])  # the default case's y^W
     args = (w["f_hz"], w["modal_mass"], w["n"], w["phi"], w["zeta"])
     n_t = choose_grid(w["f_hz"], w["zeta"], DT)
     t_green = median_time(lambda: green_from_receptance(lambda f: wheel_receptance(f, *args), DT, n_t), 3, warm=1)

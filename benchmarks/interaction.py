@@ -4,7 +4,7 @@
 
 8 s of rolling at dt = 36 us (222,222 steps) with the point-contact model, the whole time loop
 in numba, after JIT warm-up, one core: the default case's Green's functions as the pipeline
-passes them (build/cases/default/greens.npz: the C20's modes below 7 kHz at y^W = -32 mm and
+passes them (build/cases/default/greens.npz: the C20's modes below 7 kHz at the default contact point y^W = +32 mm and
 the BV50 moving kernel, 4096 lags); without that artifact the C20 modes of tests/greens and a
 2048-lag kernel from build/rails/bv50/rail.npz (else the analytic beam); the default contact
 (build/cases/default/contact.npz, else the analytic Hertz stand-in).  Also the cost per step
@@ -161,7 +161,7 @@ def run() -> str:
 
 `solvers/interaction.py`, `OMP_NUM_THREADS=1 .venv/bin/python -m benchmarks.interaction`. Minimum of 3 runs after
 JIT warm-up, one core (the machine may be shared: the minimum is the cost). 8 s of rolling at dt = 36 us ({n_steps:,} steps), point-contact model, NORM and compliance
-tables, no early stop. Wheel: C20 at y^W = -32 mm, {len(wheel.f_r)} modes below 7 kHz ({n_rigid} rigid-body /
+tables, no early stop. Wheel: C20 at the default case's contact point, {len(wheel.f_r)} modes below 7 kHz ({n_rigid} rigid-body /
 suspension + {len(wheel.f_r) - n_rigid} flexible) as recursive modal filters; rail: moving Green's function,
 {g.shape[0]} lags ({1e3 * g.shape[0] * DT:.0f} ms), {rail_src}, partitioned FFT convolution (head {DEFAULT_BLOCK} lags); contact:
 {'build/cases/default/contact.npz' if CONTACT.exists() else 'analytic Hertz stand-in'}, mu = 0.35,

@@ -2,7 +2,7 @@
 
     OMP_NUM_THREADS=1 .venv/bin/python -m benchmarks radiation
 
-The default case's model (C20 modes at y^W = -32 mm, build/wheels/c20/modes.npz) loaded once, then
+The default case's model (C20 modes at its contact point y^W = +32 mm, build/wheels/c20/modes.npz) loaded once, then
 `sound_power_of_forces` on the simulation's final stretch (build/cases/default/simulate.npz, 0.5 s at
 36 us; without it a synthetic squeal tone with two harmonics at the (3,0,a) mode), the call the studies
 make per simulation; and the two unit-force curves on the stage's frequency grid.

@@ -14,12 +14,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from solvers.constants import THESIS_CONTACT_POSITIONS
+from solvers.constants import THESIS_CONTACT_POINTS_FIELD
 
 from .outline import GeometryError, Segment, bezier, check_simple, closed_polygon, fillet
 
-# lateral tread positions y^W of the nominal contact points (SPEC 2, thesis [4.1]): mesh nodes sit there
-CONTACT_Y = tuple(y_w for y_w, _ in THESIS_CONTACT_POSITIONS.values())
+
+# lateral tread positions y^W of the nominal contact points (SPEC 2, thesis [4.1] with its printed y^W
+# negated: + toward the field side, solvers.constants.THESIS_CONTACT_POINTS_FIELD): mesh nodes there
+CONTACT_Y = tuple(yw for yw, _ in THESIS_CONTACT_POINTS_FIELD.values())
 
 
 def _require(cond: bool, key: str, value, allowed: str) -> None:

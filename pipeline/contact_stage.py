@@ -1,8 +1,11 @@
 """Contact stage: everything the time loop needs about the contact of a case
 (SPEC 4), computed with Kalker's discretised half-space theory.
 
-For the case's contact position (SPEC 2 table) it builds the undeformed gap
-from the wheel tread and rail-head profiles on the grid dx = v dt, the NORM
+The contact point is the rigid contact of the case's wheel and rail profiles
+at its wheelset offset (``pipeline.profiles.case_contact``, the function the
+greens and radiate stages use too).  Around it the stage builds the
+undeformed gap from the profiles on the grid dx = v dt (the potential area
+from the gap itself, enlarged until the static patch stays inside), the NORM
 table F3(xi3) with pressures (and its measured interpolation error), the
 tangential compliance A_tau over the approach, and the regularized friction
 curves mu_RF(s) for mu = 0.10 .. 0.60 (step 0.05) at the static preload.
@@ -18,88 +21,113 @@ import time
 import numpy as np
 
 from . import artifacts, paths
-from .config import load
-from .schemas import CASE
 
 log = logging.getLogger("pipeline.contact")
 
-# SPEC 2 (thesis [4.1]): wheelset lateral offset -> (y^W on the tread, y^R on the rail head), m.
-# The rail head profiles here are symmetric, so the sign convention of y^R does not change the gap.
-NOMINAL_POSITIONS = {-0.005: (0.005, -0.016), -0.010: (-0.004, -0.012), -0.015: (-0.032, 0.012)}
 MU_VALUES = np.round(np.arange(0.10, 0.6001, 0.05), 2)
 DY = 0.5e-3  # lateral element size (m)
+GROW, MAX_TRIES = 1.4, 5  # potential area: growth per retry, retries
+
+
+def contact_setup(case: str) -> tuple[dict, dict, dict, object, dict]:
+    """(case, wheel, rail, ContactGeometry, resolved config) of a case; validated."""
+    from .profiles import case_contact
+
+    c, pw, pr, geo = case_contact(case)
+    cfg = {"case": {k: c[k] for k in ("contact", "kinematics", "loading", "time")},
+           "wheel": {k: pw[k] for k in ("tyre", "flange", "material")}, "rail": pr, "mu_values": MU_VALUES.tolist(),
+           "dy": DY, "running_surfaces": geo.config}
+    return c, pw, pr, geo, cfg
 
 
 def contact_inputs(case: str) -> tuple[dict, dict, dict, dict]:
-    """(case, wheel, rail, resolved config) of a case; validated."""
-    from .rail_stage import load_rail_params
-    from .wheel_stage import load_wheel
-
-    c = load(paths.case_file(case), CASE)
-    pw, _ = load_wheel(c["wheel"])
-    pr, _ = load_rail_params(c["rail"])
-    cfg = {"case": {k: c[k] for k in ("contact", "kinematics", "loading", "time")},
-           "wheel": {k: pw[k] for k in ("tyre", "flange", "material")}, "rail": pr, "mu_values": MU_VALUES.tolist(),
-           "dy": DY}
+    """(case, wheel, rail, resolved config) of a case: the contact artifact's
+    configuration (for staleness checks of the stages that load it)."""
+    c, pw, pr, _, cfg = contact_setup(case)
     return c, pw, pr, cfg
 
 
-def profiles(pw: dict, pr: dict):
-    from geometry.rail import head_profile
-    from geometry.wheel import tread_profile
+def static_contact(geo, E: float, nu: float, F_L: float, dx: float):
+    """Potential area, gap and static NORM solution at the preload F_L:
+    (x, y, gap, A, B, xi_static, static).  The area starts from the gap's own
+    extent at an approach estimate (Hertz with the lateral curvature kept >=
+    A/30, an overestimate for conformal gaps), with a 15 % margin, and grows
+    (within the profiles) until the patch at twice the static approach (the
+    NORM table's last node) does not reach its edge; it is then trimmed to
+    that patch plus two elements on every side."""
+    from solvers.contact.norm import approach_for_load, norm
+    from solvers.contact.surfaces import contact_gap, curvatures, potential_area
 
-    prof = tread_profile(pw)["points"]
-    top = prof[np.argmax(prof[:, 1]):]  # flange top -> field face: r single-valued in y
-    ys, rs = top[:, 0], top[:, 1]
+    yw, Y = geo.contact.y_wheel, geo.contact.y_track
+    A, B = curvatures(geo.r_wheel, geo.z_rail, yw, Y)
+    Be = max(B, A / 30.0)
+    Estar = E / (2 * (1 - nu**2))
+    c_eq = (3 * F_L * 0.5 / np.sqrt(A * Be) / (4 * Estar)) ** (1 / 3)
+    delta = c_eq**2 * 2 * np.sqrt(A * Be)  # Hertz approach (Johnson 4.2x, equivalent radius)
+    a_half, lo, hi, lo_max, hi_max = potential_area(geo.r_wheel, geo.z_rail, yw, Y, delta, A, DY)
+    lo, hi = max(1.15 * lo, lo_max), min(1.15 * hi, hi_max)
 
-    def r_wheel(y):
-        return np.interp(y, ys, rs, left=np.nan, right=np.nan)
+    def grid(a_half, lo, hi):
+        nx = int(np.ceil(a_half / dx - 1e-9))
+        ny0, ny1 = int(np.floor(lo / DY + 1e-9)), int(np.ceil(hi / DY - 1e-9))
+        return np.arange(-nx, nx + 1) * dx, np.arange(ny0, ny1 + 1) * DY
 
-    def z_rail(y):
-        return head_profile(pr, y)
+    for _ in range(MAX_TRIES):
+        x, y = grid(a_half, lo, hi)
+        gap = contact_gap(geo.r_wheel, geo.z_rail, yw, Y, x, y)
+        xi_static, static = approach_for_load(F_L, gap, dx, DY, E, nu)
+        top = norm(gap, 2.0 * xi_static, dx, DY, E, nu, warm=static)  # the NORM table's last node
+        if not top.touches_edge:
+            # trim to the top node's patch plus two elements, then solve the static load again
+            ix, iy = np.flatnonzero(top.contact.any(axis=1)), np.flatnonzero(top.contact.any(axis=0))
+            a_half = max(-x[ix[0]], x[ix[-1]]) + 2 * dx
+            x, y = grid(a_half, max(y[iy[0]] - 2 * DY, lo_max), min(y[iy[-1]] + 2 * DY, hi_max))
+            gap = contact_gap(geo.r_wheel, geo.z_rail, yw, Y, x, y)
+            xi_static, static = approach_for_load(F_L, gap, dx, DY, E, nu)
+            return x, y, gap, A, B, xi_static, static
+        C = top.contact
+        if (C[:, 0].any() and lo <= lo_max + DY) or (C[:, -1].any() and hi >= hi_max - DY):
+            break
+        a_half, lo, hi = GROW * a_half, max(GROW * lo, lo_max), min(GROW * hi, hi_max)
+    raise RuntimeError(f"at twice the static approach the contact patch reaches the edge of the potential area "
+                       f"({1e3 * lo:+.1f} .. {1e3 * hi:+.1f} mm laterally: the wheel or rail profile ends there, or "
+                       f"it is {MAX_TRIES} times enlarged); the profiles are too conformal here for this contact model")
 
-    return r_wheel, z_rail
 
-
-def build_contact(c: dict, pw: dict, pr: dict, n_table: int = 41) -> dict:
-    """The contact arrays of one case (pure computation, no I/O)."""
+def build_contact(c: dict, pw: dict, geo, n_table: int = 41) -> dict:
+    """The contact arrays of one case (pure computation, no I/O); ``geo`` is
+    the case's ContactGeometry (profiles and rigid contact point)."""
     from solvers.contact.compliance import compliance_table
     from solvers.contact.friction import rf_curve
-    from solvers.contact.norm import approach_for_load, norm_table, table_midpoint_error
-    from solvers.contact.surfaces import contact_gap, contact_grid, curvatures
+    from solvers.contact.norm import norm_table, table_midpoint_error
+    from solvers.contact.surfaces import patch_metrics
 
     E, nu = pw["material"]["E"], pw["material"]["nu"]
-    yw, yr = NOMINAL_POSITIONS[round(c["contact"]["dy_wr"], 3)]
     v, dt, F_L = c["kinematics"]["speed"], c["time"]["dt"], c["loading"]["preload"]
     dx = v * dt  # SPEC 4.1: the contact moves one element per step
-    r_wheel, z_rail = profiles(pw, pr)
-    A, B = curvatures(r_wheel, z_rail, yw, yr)
-    if B <= 0:
-        raise ValueError(f"the profiles are not convex against each other at y^W = {yw}, y^R = {yr} "
-                         f"(lateral gap curvature {B:.3g} 1/m)")
-    # Hertz-like size estimate for the grid (equivalent radius, Johnson 4.2x)
-    Estar = E / (2 * (1 - nu**2))
-    Re = 0.5 / np.sqrt(A * B)
-    c_eq = (3 * F_L * Re / (4 * Estar)) ** (1 / 3)
-    a_est, b_est = c_eq * (B / A) ** (1 / 3), c_eq * (A / B) ** (1 / 3)
-    x, y = contact_grid(a_est, b_est, dx, DY)
-    gap = contact_gap(r_wheel, z_rail, yw, yr, x, y)
-    xi_static, static = approach_for_load(F_L, gap, dx, DY, E, nu)
-    if static.touches_edge:
-        raise RuntimeError("the static contact reaches the edge of the potential contact area; enlarge the margin")
+    x, y, gap, A, B, xi_static, static = static_contact(geo, E, nu, F_L, dx)
     xi_nodes = np.linspace(0.0, 2.0 * xi_static, n_table)
     table = norm_table(gap, xi_nodes, dx, DY, E, nu)
     err = table_midpoint_error(table, gap, dx, DY, E, nu)
     A1_nodes, A2_nodes = compliance_table(xi_nodes, table.p, dx, DY, E, nu)
     curves = [rf_curve(static.p, dx, DY, v, mu, E, nu) for mu in MU_VALUES]
     ns = max(len(k.s) for k in curves)
+    patch = patch_metrics(static.p, x, y)
+    rc = geo.contact
+    second = rc.second if rc.second is not None else (np.nan, np.nan)
 
     def pad(arrs):
         return np.array([np.pad(a, (0, ns - len(a)), mode="edge") for a in arrs])
 
     return {
         "x": x, "y": y, "dx": np.float64(dx), "dy": np.float64(DY), "gap": gap,
-        "y_wheel": np.float64(yw), "y_rail": np.float64(yr), "curvature_A": np.float64(A), "curvature_B": np.float64(B),
+        "y_wheel": np.float64(rc.y_wheel), "y_rail": np.float64(rc.y_rail), "y_track": np.float64(rc.y_track),
+        "contact_angle": np.float64(rc.angle), "second_zone": np.array(second, float),
+        "curvature_A": np.float64(A), "curvature_B": np.float64(B),
+        "curvature_wheel": np.float64(geo.wheel.curvature(rc.y_wheel)),
+        "curvature_rail": np.float64(geo.rail_track.curvature(rc.y_track)),
+        "patch_area": np.float64(patch["area"]), "patch_length": np.float64(patch["length"]),
+        "patch_width": np.float64(patch["width"]),
         "xi3_static": np.float64(xi_static), "p3_static": static.p,
         "xi3_nodes": xi_nodes, "F3_nodes": table.F3, "q_nodes": table.q, "pressure_nodes": table.p,
         "table_error_xi3": err["xi3"], "table_error_F3": err["force"], "table_error_p": err["pressure"],
@@ -111,17 +139,19 @@ def build_contact(c: dict, pw: dict, pr: dict, n_table: int = 41) -> dict:
 
 
 def run_contact(case: str) -> dict:
-    c, pw, pr, cfg = contact_inputs(case)
+    c, pw, pr, geo, cfg = contact_setup(case)
     t0 = time.perf_counter()
-    arrays = build_contact(c, pw, pr)
+    arrays = build_contact(c, pw, geo)
     out = paths.case_dir(case)
     plot_rf(arrays, out / "contact_rf.png", f"{case}: dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm")
     artifacts.save_npz(out / "contact.npz", "contact", cfg, **arrays)
     err = np.nanmax(arrays["table_error_F3"][arrays["table_error_xi3"] > 0.5 * arrays["xi3_static"]])
-    log.info("contact %s: grid %d x %d (dx = %.3g mm), static approach %.1f um, NORM table error %.2g %% "
-             "near the working point, %d RF curves in %.1f s -> %s", case, len(arrays["x"]), len(arrays["y"]),
-             1e3 * arrays["dx"], 1e6 * arrays["xi3_static"], 100 * err, len(MU_VALUES), time.perf_counter() - t0,
-             out / "contact.npz")
+    log.info("contact %s: contact point y^W = %+.2f mm, y^R = %+.2f mm (angle %+.1f deg); grid %d x %d (dx = %.3g mm), "
+             "patch %.0f mm^2 (%.1f x %.1f mm), static approach %.1f um, NORM table error %.2g %% near the working "
+             "point, %d RF curves in %.1f s -> %s", case, 1e3 * arrays["y_wheel"], 1e3 * arrays["y_rail"],
+             np.degrees(arrays["contact_angle"]), len(arrays["x"]), len(arrays["y"]), 1e3 * arrays["dx"],
+             1e6 * arrays["patch_area"], 1e3 * arrays["patch_length"], 1e3 * arrays["patch_width"],
+             1e6 * arrays["xi3_static"], 100 * err, len(MU_VALUES), time.perf_counter() - t0, out / "contact.npz")
     return arrays
 
 

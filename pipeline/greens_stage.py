@@ -49,24 +49,44 @@ RAIL_LAGS = 4096  # moving-kernel length (0.147 s, 2 m at 50 km/h); its decay is
 
 
 def greens_inputs(case: str):
-    from .contact_stage import NOMINAL_POSITIONS
-    from .config import load
-    from .rail_stage import load_rail_params
-    from .schemas import CASE
-    from .wheel_stage import load_wheel
+    from .profiles import case_contact
 
-    c = load(paths.case_file(case), CASE)
-    pw, _ = load_wheel(c["wheel"])
-    pr, _ = load_rail_params(c["rail"])
+    c, pw, pr, geo = case_contact(case)  # the contact point of the profiles, as the contact stage's
+    where = f"case '{case}', dy_WR = {1e3 * c['contact']['dy_wr']:+.1f} mm (y^W = {1e3 * geo.contact.y_wheel:+.2f} mm)"
+    yw, yr = geo.contact.y_wheel, rail_point(c["rail"], pr, geo.contact.y_rail, where)  # yr: the rail model's node
     modes, mprov = artifacts.load_npz(paths.wheel_dir(c["wheel"]) / "modes.npz", "wheel-modes", pw,
                                       make_target=f"modes WHEEL={c['wheel']}")
     rprov = _rail_provenance(c["rail"], pr)
-    yw, yr = NOMINAL_POSITIONS[round(c["contact"]["dy_wr"], 3)]
     cfg = {"case": {k: c[k] for k in ("contact", "kinematics", "time")}, "wheel_modes": mprov["config_hash"],
+           "running_surfaces": geo.config,
            "rail": rprov["config_hash"], "rail_nt": RAIL_NT, "rail_lags": RAIL_LAGS, "rail_f_max": RAIL_F_MAX,
            "rail_f_taper": RAIL_F_TAPER, "wheel_band_limit": WHEEL_BAND_LIMIT, "wheel_decay_db": WHEEL_DECAY_DB,
            "kropp_taps": KROPP_TAPS, "kropp_fit_tol": KROPP_FIT_TOL}
-    return c, pw, pr, modes, (yw, yr), cfg
+    return c, pw, pr, modes, (yw, yr, geo.contact.y_rail), cfg
+
+
+RAIL_POINT_TOL = 1e-3  # m: the rail model's head node may lie this far from the contact point y^R
+
+
+def rail_point(name: str, pr: dict, y_r: float, where: str = "") -> float:
+    """The rail model's loaded head point for the contact point y^R of the
+    profiles: on the same side of the head as y^R (the vertical-lateral cross
+    receptance changes sign with the side), at the node |y| of the rail file's
+    ``contact.y`` list (mesh nodes of the rail section) nearest to |y^R|,
+    within RAIL_POINT_TOL (the rail's receptances change little with the
+    lateral position on the head, thesis section 4.2.2); a one-line
+    ConfigError otherwise (``where``: the case and offset it names)."""
+    from .config import ConfigError
+
+    ys = np.unique(np.abs(np.asarray(pr["contact"]["y"], float)))
+    i = int(np.argmin(np.abs(ys - abs(y_r))))
+    if abs(ys[i] - abs(y_r)) > RAIL_POINT_TOL:
+        raise ConfigError(str(paths.rail_file(name)), detail=(
+            (f"{where}: " if where else "") + f"the rail model has no receptance at the contact point y^R = "
+            f"{1e3 * y_r:+.3f} mm of the profiles, {1e3 * abs(ys[i] - abs(y_r)):.3f} mm from the nearest rail "
+            f"head node |y| = {1e3 * ys[i]:.3f} mm of contact.y (allowed {1e3 * RAIL_POINT_TOL:.1f} mm): "
+            f"add {y_r:.5f} to contact.y and rebuild the rail (make rail RAIL={name})"))
+    return float(np.copysign(ys[i], y_r))
 
 
 _RAIL_PROV: dict = {}
@@ -140,10 +160,11 @@ def rail_taper(f) -> np.ndarray:
 
 
 def run_greens(case: str) -> dict:
-    c, pw, pr, modes, (yw, yr), cfg = greens_inputs(case)
+    c, pw, pr, modes, (yw, yr, y_rail_contact), cfg = greens_inputs(case)
     dt, v = c["time"]["dt"], c["kinematics"]["speed"]
     t0 = time.perf_counter()
-    arrays = {"dt": np.float64(dt), "v": np.float64(v), "y_wheel": np.float64(yw), "y_rail": np.float64(yr)}
+    arrays = {"dt": np.float64(dt), "v": np.float64(v), "y_wheel": np.float64(yw), "y_rail": np.float64(yr),
+              "y_rail_contact": np.float64(y_rail_contact)}
     arrays.update(wheel_greens(pw, modes, yw, dt))
     t1 = time.perf_counter()
     rail, cached = rail_greens(pr, cfg["rail"], yr, v, dt)

@@ -59,24 +59,20 @@ SETTINGS = {"rho": 1.21, "c0": 343.0, "faces": 2, "web_thickness": "tyre", "tors
 
 
 def _case_wheel(case: str):
-    from .config import load
-    from .contact_stage import NOMINAL_POSITIONS
-    from .schemas import CASE
-    from .wheel_stage import load_wheel
+    from .profiles import case_contact
 
-    c = load(paths.case_file(case), CASE)
-    pw, _ = load_wheel(c["wheel"])
+    c, pw, _, geo = case_contact(case)  # the contact point of the profiles, as the contact and greens stages'
+    y_w = geo.contact.y_wheel
     modes, mprov = artifacts.load_npz(paths.wheel_dir(c["wheel"]) / "modes.npz", "wheel-modes", pw,
                                       make_target=f"modes WHEEL={c['wheel']}")
-    y_w = NOMINAL_POSITIONS[round(c["contact"]["dy_wr"], 3)][0]
     return c, pw, modes, mprov, y_w
 
 
 def load_radiation_model(case: str, zeta_overrides: dict | None = None):
-    """The radiation model of the case's wheel at its contact point (SPEC 2's y^W for
-    dy_WR): modes, surfaces, surface nodes, the contact point (interpolated on the
-    running surface exactly as the Green's functions stage does, so the wheel is the
-    simulation's), damping [4.11] (``zeta_overrides`` {mode index: zeta} as
+    """The radiation model of the case's wheel at its contact point (y^W of the rigid
+    contact of the case's profiles, ``pipeline.profiles.case_contact``): modes,
+    surfaces, surface nodes, the contact point (interpolated on the running surface
+    exactly as the Green's functions stage does, so the wheel is the simulation's), damping [4.11] (``zeta_overrides`` {mode index: zeta} as
     ``solvers.receptance.modal_damping``).  Load once, reuse for many force sets."""
     from geometry.wheel import surface_radii, tread_radius, wheel_segments
     from postprocess import radiation as R

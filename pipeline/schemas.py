@@ -86,6 +86,10 @@ WHEEL = {
         "size_hub": Field(**L, min=0.0005, max=0.1),
         "size_axle": Field(**L, min=0.001, max=0.1, default=0.02),
     },
+    "running_surface": {
+        "profile": Field(str, default=None, doc="tabulated tread profile geometry/profiles/<profile>.csv for the "
+                                                "contact (default: the parametric cone + flange above)"),
+    },
 }
 
 # the receiver of the `listen` stage (postprocess/listener.py states the propagation model)
@@ -108,8 +112,15 @@ CASE = {
     "wheel": Field(str, default="c20", doc="geometry/wheels/<wheel>.toml"),
     "rail": Field(str, default="bv50", doc="geometry/rails/<rail>.toml"),
     "contact": {
-        "dy_wr": Field(float, unit="m", choices=[-0.005, -0.010, -0.015],
-                       doc="wheelset lateral offset selecting the nominal contact point (SPEC 2)"),
+        "dy_wr": Field(float, unit="m", min=-0.03, max=0.03,
+                       doc="wheelset lateral offset; the contact point is the rigid contact of the profiles "
+                           "(SPEC 2: -0.005, -0.010, -0.015)"),
+        "rolling_circle_y": Field(float, unit="m", min=-0.03, max=0.03, default=-0.0056667,
+                                  doc="c: the wheel's rolling circle over the rail centre line (+ field side) for "
+                                      "the centred wheelset (Y = y^W + c + dy_wr); -17/3 mm follows from the "
+                                      "thesis table [4.1] with its y^W negated (solvers.constants)"),
+        "wheel_profile": Field(str, default=None, doc="overrides the wheel file's running_surface.profile"),
+        "rail_profile": Field(str, default=None, doc="overrides the rail file's running_surface.profile"),
         "model": Field(str, choices=["point", "kalker"], default="point",
                        doc="tangential contact: point-contact model with regularized friction, or Kalker's "
                            "transient variational theory"),
@@ -187,6 +198,12 @@ RAIL = {
         "size_web": Field(**L, min=0.0005, max=0.02),
         "size_foot": Field(**L, min=0.0005, max=0.02),
         "pad_layers": Field(int, min=1, max=10),
+    },
+    "running_surface": {
+        "profile": Field(str, default=None, doc="tabulated head profile geometry/profiles/<profile>.csv for the "
+                                                "contact (default: the head arcs above)"),
+        "inclination": Field(float, min=0.0, max=0.1, default=0.0,
+                             doc="rail inclination toward the track centre, tan (1:30 = 0.0333, 1:40 = 0.025)"),
     },
     "contact": {"y": ListOf(Field(float, unit="m", min=-0.04, max=0.04), min_len=1, max_len=10,
                             doc="rail-head points y^R where receptances are evaluated (SPEC 2)")},

@@ -24,13 +24,16 @@ from pathlib import Path
 
 import numpy as np
 
+from solvers.constants import THESIS_CONTACT_POINTS_FIELD
+
 ROOT = Path(__file__).resolve().parents[2]
 ARTIFACT = ROOT / "build" / "wheels" / "c20" / "modes.npz"
 WHEEL_FILE = ROOT / "geometry" / "wheels" / "c20.toml"
 DT = 36e-6
 V = 50 / 3.6
 Z_RC = 0.75
-Y_CONTACT = {-5: 0.005, -10: -0.004, -15: -0.032}   # dy_WR (mm) -> y^W (m), SPEC 2
+# dy_WR (mm) -> y^W (m), SPEC 2: thesis [4.1] field-positive (its printed y^W negated, solvers.constants)
+Y_CONTACT = {round(1e3 * dy): yw for dy, (yw, _) in THESIS_CONTACT_POINTS_FIELD.items()}
 
 
 # ------------------------------------------------------------------------------------- SDOF

@@ -266,7 +266,7 @@ def fft_section(w) -> tuple[str, dict]:
     ax[0].legend(fontsize=7, loc="upper left")
     ax[-1].set_xlabel("frequency (Hz)")
     ax[-1].set_xlim(5, F_BAND)
-    fig.suptitle(f"C20 at y^W = -32 mm, dt = 36 us: pointwise error of the kernel's spectrum (max over "
+    fig.suptitle(f"C20 at y^W = {1e3 * Y_CONTACT[-15]:+.0f} mm, dt = 36 us: pointwise error of the kernel's spectrum (max over "
                  f"log-spaced bins of the {len(f)}-point grid)", fontsize=9)
     fig.tight_layout()
     fig.savefig(DOCS / "greens_fft_error.png", dpi=110)
@@ -298,7 +298,7 @@ def fft_section(w) -> tuple[str, dict]:
 
 Criterion (issue 5): the DFT of the computed Green's function reproduces the receptance within 1 % up to 2 kHz and
 5 % up to 6.5 kHz, **pointwise**: |DFT(g) - G| / |G| at every grid frequency f_k = k/(N_t dt) from 5 Hz, for G22,
-G33 and G23 of the C20 at the default contact point (y^W = -32 mm).
+G33 and G23 of the C20 at the default contact point (y^W = {1e3 * Y_CONTACT[-15]:+.0f} mm).
 
 Grids: `choose_grid` with its defaults gives N_t = {n_6} (grid step {1e3 / (n_6 * DT):.2f} mHz, set by the narrowest
 -3 dB band, mode {narrow} at {w['f_hz'][narrow]:.1f} Hz, zeta = {w['zeta'][narrow]:g}: 6 points in it; decayed by

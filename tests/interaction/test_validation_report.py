@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from solvers.constants import thesis_contact_point
 from solvers.interaction import WheelModes, contact_model, refine_table, simulate
 from tests.interaction import (CONTACT, DT, GAMMA_Y, PRELOAD, RAIL, V, bv50_kernel, contact_stiffness,
                                decay_rates, default_contact, rail_point_receptance, reduced_squealer,
@@ -25,7 +26,8 @@ from tests.interaction import (CONTACT, DT, GAMMA_Y, PRELOAD, RAIL, V, bv50_kern
 ROOT = Path(__file__).resolve().parents[2]
 DOCS = ROOT / "docs" / "validation"
 MU = 0.35
-POSITIONS = {-15: (-0.032, 0.012), -10: (-0.004, -0.012)}      # dy_WR (mm) -> (y^W, y^R), SPEC 2
+# dy_WR (mm) -> (y^W, y^R), SPEC 2: thesis [4.1] field-positive (its printed y^W negated, solvers.constants)
+POSITIONS = {dy: thesis_contact_point(1e-3 * dy) for dy in (-15, -10)}
 
 
 def _plt():
@@ -40,23 +42,18 @@ def _plt():
 def build_contact(dy_mm: int, dt: float, mu: float = MU):
     """The contact of a nominal position at the grid dx = v dt: the contact stage's computation
     (pipeline/contact_stage.build_contact) for one friction coefficient."""
-    from pipeline.contact_stage import DY, NOMINAL_POSITIONS, contact_inputs, profiles
+    from pipeline.contact_stage import DY, static_contact
+    from pipeline.profiles import case_contact, contact_geometry
     from solvers.contact.compliance import compliance_table
     from solvers.contact.friction import rf_curve
-    from solvers.contact.norm import approach_for_load, norm_table
-    from solvers.contact.surfaces import contact_gap, contact_grid, curvatures
+    from solvers.contact.norm import norm_table
 
-    c, pw, pr, _ = contact_inputs("default")
+    c, pw, pr, _ = case_contact("default")
+    c["contact"]["dy_wr"] = dy_mm * 1e-3
+    geo = contact_geometry("default", c, pw, pr)  # the contact point of the profiles, as the contact stage's
     E, nu = pw["material"]["E"], pw["material"]["nu"]
-    yw, yr = NOMINAL_POSITIONS[round(dy_mm * 1e-3, 3)]
     dx = V * dt
-    r_wheel, z_rail = profiles(pw, pr)
-    A, B = curvatures(r_wheel, z_rail, yw, yr)
-    Estar = E / (2 * (1 - nu ** 2))
-    c_eq = (3 * PRELOAD * 0.5 / np.sqrt(A * B) / (4 * Estar)) ** (1 / 3)
-    x, y = contact_grid(c_eq * (B / A) ** (1 / 3), c_eq * (A / B) ** (1 / 3), dx, DY)
-    gap = contact_gap(r_wheel, z_rail, yw, yr, x, y)
-    xi_s, static = approach_for_load(PRELOAD, gap, dx, DY, E, nu)
+    x, y, gap, _, _, xi_s, static = static_contact(geo, E, nu, PRELOAD, dx)
     nodes = np.linspace(0.0, 2.0 * xi_s, 41)
     t = norm_table(gap, nodes, dx, DY, E, nu)
     A1, A2 = compliance_table(nodes, t.p, dx, DY, E, nu)
@@ -181,7 +178,7 @@ def default_section(cache: dict) -> str:
     """The default case (SPEC 6) at dt, dt/2 and dt/4: squeal, its convergence in dt, and the linear
     growth rates of the (n,0,a) modes against those measured in the time loop.  Stores the measures
     in cache['default'] for the assertions of the test."""
-    wheel, wc = wheel_at(-0.032)
+    wheel, wc = wheel_at(POSITIONS[-15][0])
     an = [i for i in range(len(wheel.f_r)) if wc["cls"][i] == "a" and wc["m"][i] == 0 and wc["n"][i] >= 2]
     rows, runs, growth = [], {}, {}
     contact_dt2 = None
@@ -279,7 +276,7 @@ def default_section(cache: dict) -> str:
     plt.close(fig)
     n_sq = int(wc["n"][k_sq])
     harm = "" if h_sq == 1 else f" (harmonic {h_sq})"
-    return f"""### The default case (SPEC 6): C20 at y^W = -32 mm, BV50 at y^R = +12 mm, mu = 0.35, gamma_y = -0.014
+    return f"""### The default case (SPEC 6): C20 at y^W = {1e3 * POSITIONS[-15][0]:+.0f} mm, BV50 at y^R = +12 mm, mu = 0.35, gamma_y = -0.014
 
 50 km/h, 65 kN, the C20 with its {len(wheel.f_r)} modes below 7 kHz (rigid half wheelset on the primary
 suspension included, damping [4.11]) at the contact point, the BV50 moving Green's function at the head point
@@ -336,7 +333,7 @@ suppressed once the winner saturates the contact. Variants of the default case (
 
 
 def squeal_section(cache: dict) -> str:
-    wheel, wc = wheel_at(-0.004)
+    wheel, wc = wheel_at(POSITIONS[-10][0])
     rows, res = [], {}
     for dt in (DT, DT / 2):
         c, info = build_contact(-10, dt)
@@ -409,7 +406,7 @@ def squeal_section(cache: dict) -> str:
     near_lab = f"({wc['n'][near]},{wc['m'][near]},{wc['cls'][near]}) at {wheel.f_r[near]:.1f} Hz"
     return f"""### Squealing cases and convergence in dt
 
-**Real wheel and rail, dy_WR = -10 mm** (C20 at y^W = -4 mm with all {len(wheel.f_r)} modes, BV50 at
+**Real wheel and rail, dy_WR = -10 mm** (C20 at y^W = {1e3 * POSITIONS[-10][0]:+.0f} mm with all {len(wheel.f_r)} modes, BV50 at
 y^R = -12 mm, the contact of that position built at each dx, mu = 0.35, gamma_y = -0.014, 65 kN, 50 km/h):
 Phi_3/Phi_2 of the (2..4,0,a) modes = {r32_txt}; single-mode linear estimate {lin_txt} 1/s. Fundamental of the
 limit cycle {fa:.2f} Hz; the nearest wheel mode is {near_lab}.

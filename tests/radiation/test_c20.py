@@ -1,6 +1,6 @@
 """The radiation model on the built C20 modal artifact (skipped when
 build/wheels/c20/modes.npz has not been made): surfaces and node sets from the
-real outline, the unit-force sound power for a lateral force at y^W = -32 mm."""
+real outline, the unit-force sound power for a lateral force at the default case's y^W = +32 mm."""
 import json
 from pathlib import Path
 
@@ -9,19 +9,22 @@ import pytest
 
 from geometry.wheel import surface_radii, wheel_segments
 from postprocess import radiation as R
+from solvers.constants import thesis_contact_point
 
 ART = Path(__file__).resolve().parents[2] / "build" / "wheels" / "c20" / "modes.npz"
+Y_DEFAULT = thesis_contact_point(-0.015)[0]  # the default case's y^W (m)
 pytestmark = pytest.mark.skipif(not ART.exists(), reason="C20 modal artifact not built (make modes)")
 
 
 def load_c20(path=ART):
-    """(modes dict, wheel parameters, surfaces, surface nodes, contact node at y^W = -32 mm)."""
+    """(modes dict, wheel parameters, surfaces, surface nodes, contact node at the default case's
+    y^W = +32 mm: thesis [4.1] field-positive, solvers.constants)."""
     d = dict(np.load(path, allow_pickle=False))
     p = json.loads(str(d["__provenance__"]))["config"]  # the resolved configuration the artifact was built from
     s = R.radiation_surfaces(surface_radii(p), wheel_segments(p))
     bnd = {k[len("boundary_"):]: d[k] for k in d if k.startswith("boundary_")}
     nodes = R.surface_nodes(d["points"], bnd, s)
-    c = R.contact_node(d["points"], bnd, -0.032, p["axle"]["rolling_circle_z"])
+    c = R.contact_node(d["points"], bnd, Y_DEFAULT, p["axle"]["rolling_circle_z"])
     return d, p, s, nodes, c
 
 
@@ -48,7 +51,7 @@ def test_surfaces_from_the_geometry(c20):
 def test_contact_node(c20):
     d, p, s, nodes, c = c20
     y = d["points"][c, 1] - p["axle"]["rolling_circle_z"]
-    assert abs(y + 0.032) < 1e-3
+    assert abs(y - Y_DEFAULT) < 1e-3
 
 
 def test_unit_lateral_force(c20):
