@@ -213,4 +213,4 @@ def test_partitioned_rail_convolution_equals_direct_in_the_default_case(contact)
     assert np.abs(fast.F - direct.F).max() < 1e-9 * PRELOAD
     assert np.abs(fast.xi - direct.xi).max() < 1e-9 * np.abs(direct.xi).max()
     a, b = fast.measures(), direct.measures()
-    assert abs(a["L_F2"] - b["L_F2"]) < 1e-6 and a["f_dominant"] == b["f_dominant"]
+    assert abs(a["L_F2"] - b["L_F2"]) < 1e-6 and abs(a["f_dominant"] - b["f_dominant"]) <= 1e-12 * b["f_dominant"]
