@@ -32,7 +32,7 @@ GREENS_SRC   := solvers/green.py solvers/receptance.py solvers/rail_response.py 
 SIM_SRC      := solvers/interaction.py solvers/green.py solvers/partitioned.py pipeline/simulate_stage.py postprocess/spectra.py
 STAB_SRC     := solvers/stability.py solvers/interaction.py solvers/green.py solvers/partitioned.py pipeline/stability_stage.py
 RADIATE_SRC  := postprocess/radiation.py postprocess/force_radiation.py postprocess/spectra.py solvers/receptance.py geometry/wheel.py pipeline/radiate_stage.py
-LISTEN_SRC   := postprocess/listener.py postprocess/audio.py postprocess/spectra.py pipeline/listen_stage.py pipeline/listen_plot.py
+LISTEN_SRC   := postprocess/listener.py postprocess/audio.py postprocess/spectra.py pipeline/listen_stage.py postprocess/plots/listen.py
 
 .DEFAULT_GOAL := all
 .PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate stability stability-map listen report study check clean distclean FORCE

@@ -39,6 +39,7 @@ import logging
 import numpy as np
 
 from . import artifacts, paths
+from .atomic import save_figure
 from .config import ConfigError, config_hash, load, validate
 
 log = logging.getLogger("pipeline.listen")
@@ -235,7 +236,6 @@ def _num(x):
 def run_listen(case: str, distance=None, height=None, allow_silent: bool = False) -> dict:
     arrays, wav, cal, cfg = compute_listening(case, distance, height, allow_silent)
     out = paths.case_dir(case)
-    from .listen_plot import plot_listening
 
     plot_listening(arrays, out / "listen.png", case)
     with artifacts.atomic_write(out / "listen.wav") as tmp:
@@ -261,3 +261,10 @@ def load_listening(case: str) -> tuple[dict, dict]:
         raise artifacts.ArtifactError(path, f"stale artifact (its radiate, simulate, wheel or settings changed); "
                                       f"run `make listen CASE={case}`")
     return a, prov
+
+
+def plot_listening(a: dict, path, case: str) -> None:
+    """listen.png (``postprocess.plots.listen.listening_figure``), saved atomically to ``path``."""
+    from postprocess.plots.listen import listening_figure
+
+    save_figure(listening_figure(a, case), path, dpi=90)
