@@ -37,7 +37,7 @@ def run() -> str:
     rows = screen_rows("default", gammas, mus)
     t_map = time.perf_counter() - t0
     tl = ""
-    table = paths.BUILD / "studies" / "map" / "map.csv"
+    table = paths.build() / "studies" / "map" / "map.csv"
     if table.exists():
         with open(table, newline="") as fh:
             w = [float(r["wall_s"]) for r in csv.DictReader(fh) if r.get("wall_s") not in (None, "", "nan")]

@@ -87,7 +87,7 @@ def main(argv=None) -> int:
             load_rail_params(args.rail)
             case_path = paths.case_file(args.case)
             if not case_path.exists():
-                raise ConfigError(str(case_path), detail=f"no such case; available: {paths.available(paths.CASES)}")
+                raise ConfigError(str(case_path), detail=f"no such case; available: {paths.available(paths.cases())}")
             load(case_path, CASE)
             print(f"wheel {args.wheel}, rail {args.rail} and case {args.case}: configuration OK")
         elif args.stage == "stability_map":

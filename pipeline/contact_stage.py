@@ -17,6 +17,8 @@ import time
 
 import numpy as np
 
+from solvers.constants import THESIS_CONTACT_POSITIONS
+
 from . import artifacts, paths
 from .atomic import save_figure
 from .config import load
@@ -24,11 +26,19 @@ from .schemas import CASE
 
 log = logging.getLogger("pipeline.contact")
 
-# SPEC 2 (thesis [4.1]): wheelset lateral offset -> (y^W on the tread, y^R on the rail head), m.
-# The rail head profiles here are symmetric, so the sign convention of y^R does not change the gap.
-NOMINAL_POSITIONS = {-0.005: (0.005, -0.016), -0.010: (-0.004, -0.012), -0.015: (-0.032, 0.012)}
 MU_VALUES = np.round(np.arange(0.10, 0.6001, 0.05), 2)
 DY = 0.5e-3  # lateral element size (m)
+
+
+def contact_position(dy_wr: float) -> tuple[float, float]:
+    """(y^W on the tread, y^R on the rail head) in m of the wheelset lateral offset
+    dy_WR (m), as printed in the thesis (SPEC 2, [4.1]; ``solvers.constants``).  The
+    rail head profiles here are symmetric, so the sign convention of y^R does not
+    change the gap.  The one place a case's contact point is read."""
+    key = round(float(dy_wr), 3)
+    if key not in THESIS_CONTACT_POSITIONS:
+        raise ValueError(f"dy_WR = {dy_wr} m is not one of the thesis' positions {sorted(THESIS_CONTACT_POSITIONS)}")
+    return THESIS_CONTACT_POSITIONS[key]
 
 
 def contact_inputs(case: str) -> tuple[dict, dict, dict, dict]:
@@ -70,7 +80,7 @@ def build_contact(c: dict, pw: dict, pr: dict, n_table: int = 41) -> dict:
     from solvers.contact.surfaces import contact_gap, contact_grid, curvatures
 
     E, nu = pw["material"]["E"], pw["material"]["nu"]
-    yw, yr = NOMINAL_POSITIONS[round(c["contact"]["dy_wr"], 3)]
+    yw, yr = contact_position(c["contact"]["dy_wr"])
     v, dt, F_L = c["kinematics"]["speed"], c["time"]["dt"], c["loading"]["preload"]
     dx = v * dt  # SPEC 4.1: the contact moves one element per step
     r_wheel, z_rail = profiles(pw, pr)

@@ -34,14 +34,16 @@ import time
 
 import numpy as np
 
+from solvers.constants import F_MAX_HZ
+
 from . import artifacts, paths
 from .atomic import save_figure
 
 log = logging.getLogger("pipeline.greens")
 
-RAIL_F_MAX = 6500.0  # upper limit of the rail model (Hz)
+RAIL_F_MAX = F_MAX_HZ  # upper limit of the rail model (Hz)
 RAIL_F_TAPER = 9000.0  # the rail receptance is rolled off smoothly from RAIL_F_MAX to zero here (Hz)
-WHEEL_BAND_LIMIT = 6500.0  # the wheel kernel's DFT matches the receptance up to here (band-limited correction)
+WHEEL_BAND_LIMIT = F_MAX_HZ  # the wheel kernel's DFT matches the receptance up to here (band-limited correction)
 WHEEL_DECAY_DB = 120.0  # decay of the wheel kernel by N_t/2 dt (choose_grid)
 KROPP_TAPS = 16  # samples refitted by the band-limited correction
 KROPP_FIT_TOL = 1e-3  # its pointwise tolerance relative to |G|
@@ -50,7 +52,7 @@ RAIL_LAGS = 4096  # moving-kernel length (0.147 s, 2 m at 50 km/h); its decay is
 
 
 def greens_inputs(case: str):
-    from .contact_stage import NOMINAL_POSITIONS
+    from .contact_stage import contact_position
     from .config import load
     from .rail_stage import load_rail_params
     from .schemas import CASE
@@ -62,7 +64,7 @@ def greens_inputs(case: str):
     modes, mprov = artifacts.load_npz(paths.wheel_dir(c["wheel"]) / "modes.npz", "wheel-modes", pw,
                                       make_target=f"modes WHEEL={c['wheel']}")
     rprov = _rail_provenance(c["rail"], pr)
-    yw, yr = NOMINAL_POSITIONS[round(c["contact"]["dy_wr"], 3)]
+    yw, yr = contact_position(c["contact"]["dy_wr"])
     cfg = {"case": {k: c[k] for k in ("contact", "kinematics", "time")}, "wheel_modes": mprov["config_hash"],
            "rail": rprov["config_hash"], "rail_nt": RAIL_NT, "rail_lags": RAIL_LAGS, "rail_f_max": RAIL_F_MAX,
            "rail_f_taper": RAIL_F_TAPER, "wheel_band_limit": WHEEL_BAND_LIMIT, "wheel_decay_db": WHEEL_DECAY_DB,

@@ -68,7 +68,7 @@ def listener_inputs(case: str, distance: float | None = None, height: float | No
 
     cpath = paths.case_file(case)
     if not cpath.exists():
-        raise ConfigError(str(cpath), detail=f"no such case; available: {paths.available(paths.CASES)}")
+        raise ConfigError(str(cpath), detail=f"no such case; available: {paths.available(paths.cases())}")
     c = load(cpath, CASE)
     lis = dict(c["listener"])
     over = {f"--{k}": v for k, v in (("distance", distance), ("height", height)) if v is not None}

@@ -54,15 +54,14 @@ from .atomic import save_figure
 
 log = logging.getLogger("pipeline.radiate")
 
-F_MAX = F_MAX_HZ  # Hz, top of the band (the rail model's limit, as the Green's functions)
 F_MIN = 20.0  # Hz, lowest tone (as solvers.interaction.squeal_measures)
 SETTINGS = {"rho": 1.21, "c0": 343.0, "faces": 2, "web_thickness": "tyre", "torsion": False, "rigid": True,
-            "window": "hann", "f_min": F_MIN, "f_max": F_MAX, "prominence_db": 20.0, "unit_f": [100.0, F_MAX]}
+            "window": "hann", "f_min": F_MIN, "f_max": F_MAX_HZ, "prominence_db": 20.0, "unit_f": [100.0, F_MAX_HZ]}
 
 
 def _case_wheel(case: str):
     from .config import load
-    from .contact_stage import NOMINAL_POSITIONS
+    from .contact_stage import contact_position
     from .schemas import CASE
     from .wheel_stage import load_wheel
 
@@ -70,7 +69,7 @@ def _case_wheel(case: str):
     pw, _ = load_wheel(c["wheel"])
     modes, mprov = artifacts.load_npz(paths.wheel_dir(c["wheel"]) / "modes.npz", "wheel-modes", pw,
                                       make_target=f"modes WHEEL={c['wheel']}")
-    y_w = NOMINAL_POSITIONS[round(c["contact"]["dy_wr"], 3)][0]
+    y_w = contact_position(c["contact"]["dy_wr"])[0]
     return c, pw, modes, mprov, y_w
 
 
@@ -98,7 +97,7 @@ def load_radiation_model(case: str, zeta_overrides: dict | None = None):
     meta = {"case": case, "wheel": c["wheel"], "y_wheel": y_w, "contact": where, "contact_node": where.node,
             "surfaces": surf, "nodes": nodes, "modes": modes, "modes_hash": mprov["config_hash"]}
     return build_model(modes, surf, nodes, contact_shape(modes["shapes"], where), zeta, rho=SETTINGS["rho"],
-                       c0=SETTINGS["c0"], f_min=F_MIN, f_max=F_MAX, meta=meta)
+                       c0=SETTINGS["c0"], f_min=F_MIN, f_max=F_MAX_HZ, meta=meta)
 
 
 def sound_power_of_forces(model, F, dt: float) -> dict:
@@ -167,7 +166,7 @@ def compute_radiation(case: str, model=None) -> tuple[dict, object, dict]:
         sm, s_h = -1, -1
     fs, S2 = amplitude_spectrum(F[:, 1], dt, scaling="rms")
     _, S3 = amplitude_spectrum(F[:, 2], dt, scaling="rms")
-    band = (fs > 0) & (fs <= F_MAX)
+    band = (fs > 0) & (fs <= F_MAX_HZ)
     fu = frequency_grid_for(model, *SETTINGS["unit_f"])
     ul, ur = unit_force_curve(model, fu, "lateral"), unit_force_curve(model, fu, "radial")
     L_F2 = float(sim["L_F2"])

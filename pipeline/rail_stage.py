@@ -15,6 +15,8 @@ import time
 
 import numpy as np
 
+from solvers.constants import F_MAX_HZ, RAIL_F_MIN_HZ
+
 from . import artifacts, paths
 from .atomic import save_figure
 from .config import load_geometry
@@ -32,7 +34,7 @@ def load_rail_params(name: str) -> tuple[dict, str]:
     from geometry.rail import check_rail
 
     path = paths.rail_file(name)
-    return load_geometry(path, RAIL, check_rail, "rail", paths.available(paths.RAILS)), str(path)
+    return load_geometry(path, RAIL, check_rail, "rail", paths.available(paths.rails())), str(path)
 
 
 def run_rail(name: str) -> dict:
@@ -46,7 +48,7 @@ def run_rail(name: str) -> dict:
         mesh_rail(p, str(tmp))
     model = build_rail_model(p, str(out / "section.msh"))
     t1 = time.perf_counter()
-    freqs = np.geomspace(25.0, 6500.0, N_FREQ)
+    freqs = np.geomspace(RAIL_F_MIN_HZ, F_MAX_HZ, N_FREQ)
     arrays = stage_arrays(model, freqs, np.linspace(0.0, X_MAX, N_DIST))
     t2 = time.perf_counter()
     plot_receptances(arrays, out / "receptance.png", name)

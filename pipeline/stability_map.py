@@ -66,7 +66,7 @@ def run_stability_map(study: str, quick: bool = False) -> str:
 
     spec, _ = load_study(study)
     gammas, mus = grid_of(spec, quick)
-    out = paths.BUILD / "studies" / (study + ("-quick" if quick else ""))
+    out = paths.build() / "studies" / (study + ("-quick" if quick else ""))
     out.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
     rows = [r for case in spec["cases"] for r in screen_rows(case, gammas, mus)]

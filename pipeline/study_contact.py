@@ -23,6 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import paths
 from .config import config_hash
 from .results_table import ResultsTable
 from .study_runner import Task, pending, run_tasks
@@ -172,7 +173,7 @@ def write_outputs(spec, src, out: Path, quick, contexts, tasks, table, duration)
 
 {spec['description']}
 
-Definition `{src}`; {len(rows)} of {len(tasks)} simulations done.
+Definition `{paths.shown(src)}`; {len(rows)} of {len(tasks)} simulations done.
 
 ## In dynamic conditions: one wheel mode kept
 

@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import paths
 from .config import config_hash
 from .results_table import ResultsTable
 from .study_runner import Task, pending, run_tasks
@@ -121,7 +122,7 @@ def write_outputs(spec, src, out: Path, quick, ctx, mu, gamma_y, bis, result, ro
 
 {spec['description']}
 
-Definition `{src}`; case `{ctx.case}` (dy_WR = {1e3 * ctx.dy_wr:.0f} mm), mu = {mu:g}, gamma_y = {gamma_y:g}.
+Definition `{paths.shown(src)}`; case `{ctx.case}` (dy_WR = {1e3 * ctx.dy_wr:.0f} mm), mu = {mu:g}, gamma_y = {gamma_y:g}.
 Procedure (solvers/study.py `damping_procedure`): simulate the full wheel model; if it squeals (L_F2 >= {level:g} dB)
 at a wheel mode (dominant frequency within {100 * spec['procedure']['mode_match']:g} % of the mode's), find that
 mode's squeal-critical damping with a wheel of only that mode plus the suspension modes (rail and contact as in the

@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import paths
 from .config import ConfigError, config_hash
 from .results_table import ResultsTable
 from .study_runner import Task, pending, run_tasks
@@ -118,7 +119,7 @@ def write_outputs(spec, src, out: Path, quick: bool, contexts: dict, tasks: list
     save_csv(out / "map.csv", cols, ([rows[k][c] for c in cols] for k in keys if k in rows))
     parts = [f"# Study `{spec['name']}`{' (quick grid)' if quick else ''}: creepage/friction map (SPEC 7)\n",
              f"{spec['description']}\n",
-             f"Definition `{src}`; {len(gammas)} creepages gamma_y = {gammas[0]:g} .. {gammas[-1]:g} x {len(mus)} "
+             f"Definition `{paths.shown(src)}`; {len(gammas)} creepages gamma_y = {gammas[0]:g} .. {gammas[-1]:g} x {len(mus)} "
              f"friction coefficients mu = {mus[0]:g} .. {mus[-1]:g} at {len(contexts)} contact position(s): "
              f"{len(rows)} of {len(keys)} cases done. Each case: the full model from the case's artifacts, at most "
              f"{spec['simulation']['duration']:g} s of rolling"

@@ -14,7 +14,7 @@ ORDER = ("map", "damping", "contact")       # SPEC 7's order; other studies afte
 
 
 def study_dirs(root: Path | None = None) -> list[Path]:
-    root = root or paths.BUILD / "studies"
+    root = root or paths.build() / "studies"
     if not root.is_dir():
         return []
     done = {p.name: p for p in root.iterdir() if (p / "summary.md").is_file()}

@@ -51,8 +51,8 @@ def load_study(name: str) -> tuple[dict, str]:
         raise ConfigError(str(path), [("kind", spec["kind"], f"one of {list(KINDS)}")])
     for case in spec["cases"]:
         if not paths.case_file(case).exists():
-            raise ConfigError(str(path), [("cases", case, f"a case in {paths.CASES}: "
-                                                          f"{paths.available(paths.CASES)}")])
+            raise ConfigError(str(path), [("cases", case, f"a case in {paths.cases()}: "
+                                                          f"{paths.available(paths.cases())}")])
     return spec, str(path)
 
 
@@ -93,7 +93,7 @@ def run_study(name: str, *, quick: bool = False, scheduler: str | None = None, w
               out: str | os.PathLike | None = None, progress: bool = True) -> Path:
     """Run (or resume) the study ``name``; returns the path of its summary.md."""
     spec, src = load_study(name)
-    out = Path(out) if out else paths.BUILD / "studies" / (spec["name"] + ("-quick" if quick else ""))
+    out = Path(out) if out else paths.build() / "studies" / (spec["name"] + ("-quick" if quick else ""))
     out.mkdir(parents=True, exist_ok=True)
     mod = importlib.import_module(f".study_{spec['kind']}", __package__)
     client = LazyClient(scheduler, workers)

@@ -30,7 +30,7 @@ def load_wheel(name: str) -> tuple[dict, str]:
     from geometry.wheel import wheel_segments
 
     path = paths.wheel_file(name)
-    return load_geometry(path, WHEEL, wheel_segments, "wheel", paths.available(paths.WHEELS)), str(path)
+    return load_geometry(path, WHEEL, wheel_segments, "wheel", paths.available(paths.wheels())), str(path)
 
 
 def run_mesh(name: str) -> None:

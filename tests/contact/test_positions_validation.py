@@ -19,7 +19,8 @@ def test_three_positions_friction_curves():
     import matplotlib.pyplot as plt
 
     from pipeline.config import load
-    from pipeline.contact_stage import NOMINAL_POSITIONS, build_contact
+    from pipeline.contact_stage import build_contact, contact_position
+    from solvers.constants import THESIS_CONTACT_POSITIONS
     from pipeline.paths import case_file
     from pipeline.rail_stage import load_rail_params
     from pipeline.schemas import CASE
@@ -31,7 +32,7 @@ def test_three_positions_friction_curves():
     fig, axs = plt.subplots(2, 3, figsize=(13, 7))
     rows = ["| dy_WR | y^W / y^R (mm) | grid | approach (um) | contact elements | p_max (GPa) | "
             "full slip at mu = 0.3 (gamma_y) |", "|---|---|---|---|---|---|---|"]
-    for col, dy in enumerate(sorted(NOMINAL_POSITIONS, reverse=True)):
+    for col, dy in enumerate(sorted(THESIS_CONTACT_POSITIONS, reverse=True)):
         c["contact"]["dy_wr"] = dy
         a = build_contact(c, pw, pr)
         p = a["p3_static"]
@@ -42,7 +43,7 @@ def test_three_positions_friction_curves():
             assert np.all(np.diff(m) >= -1e-9) and m[0] == 0 and m[-1] == pytest.approx(mu, rel=2e-3)
             axs[0, col].plot(s, m, color=plt.cm.viridis(i / 11), label=f"{mu:.2f}")
         i03 = int(np.argmin(abs(a["mu_values"] - 0.3)))
-        yw, yr = NOMINAL_POSITIONS[dy]
+        yw, yr = contact_position(dy)
         axs[0, col].set_title(f"dy_WR = {1e3 * dy:.0f} mm (y^W {1e3 * yw:+.0f}, y^R {1e3 * yr:+.0f} mm)")
         axs[0, col].set_xlim(0, 0.25)
         axs[0, col].set_xlabel("slip velocity (m/s)")

@@ -40,7 +40,7 @@ def _plt():
 def build_contact(dy_mm: int, dt: float, mu: float = MU):
     """The contact of a nominal position at the grid dx = v dt: the contact stage's computation
     (pipeline/contact_stage.build_contact) for one friction coefficient."""
-    from pipeline.contact_stage import DY, NOMINAL_POSITIONS, contact_inputs, profiles
+    from pipeline.contact_stage import DY, contact_inputs, contact_position, profiles
     from solvers.contact.compliance import compliance_table
     from solvers.contact.friction import rf_curve
     from solvers.contact.norm import approach_for_load, norm_table
@@ -48,7 +48,7 @@ def build_contact(dy_mm: int, dt: float, mu: float = MU):
 
     c, pw, pr, _ = contact_inputs("default")
     E, nu = pw["material"]["E"], pw["material"]["nu"]
-    yw, yr = NOMINAL_POSITIONS[round(dy_mm * 1e-3, 3)]
+    yw, yr = contact_position(dy_mm * 1e-3)
     dx = V * dt
     r_wheel, z_rail = profiles(pw, pr)
     A, B = curvatures(r_wheel, z_rail, yw, yr)
