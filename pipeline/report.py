@@ -1,7 +1,7 @@
 """Report: one self-contained Markdown file (figures copied beside it) that
 gathers what the stages produced for a case.  Sections appear as their
 stages exist: wheel, rail, contact, Green's functions, interaction, radiation,
-and the studies found in build/studies/ (pipeline/study_report.py).
+and the studies found in build/studies/ (pipeline/study/report.py).
 
 Output: build/report/<case>/report.md and its figures.
 """
@@ -207,7 +207,7 @@ def run_report(case: str) -> str:
     sections.append(simulate_section(case, figdir))
     sections.append(radiate_section(case, figdir))
     sections.append(listen_section(case, figdir))
-    from .study_report import studies_section
+    from .study.report import studies_section
 
     sections.append(studies_section(figdir))
     text = "\n".join(sections)

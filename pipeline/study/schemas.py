@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from solvers.constants import F_MAX_HZ, SQUEAL_LEVEL_DB
 
-from .config import Field, ListOf
+from ..config import Field, ListOf
 
 KINDS = ("map", "damping", "contact")
 

@@ -20,8 +20,8 @@ import time
 
 import numpy as np
 
-from . import artifacts, paths
-from .atomic import save_figure
+from .. import artifacts, paths
+from ..atomic import save_figure
 
 log = logging.getLogger("pipeline.stability")
 COLUMNS = ["case", "dy_wr", "gamma_y", "mu", "sigma_max", "f_max", "label_max", "sigma_lf", "label_na", "sigma_na"]
@@ -32,7 +32,7 @@ def screen_rows(case: str, gammas, mus) -> list[dict]:
     from solvers.interaction import contact_model
     from solvers.stability import Basis, linearise, operating_point, screen
 
-    from .stability_stage import case_linear_model
+    from ..stability_stage import case_linear_model
 
     c, lm0, labels, _ = case_linear_model(case)
     con, _ = artifacts.load_npz(paths.case_dir(case) / "contact.npz", "contact")
@@ -61,8 +61,8 @@ def _wheel(lm):
 
 
 def run_stability_map(study: str, quick: bool = False) -> str:
-    from .study_map import grid_of
-    from .study_stage import load_study
+    from .map import grid_of
+    from .stage import load_study
 
     spec, _ = load_study(study)
     gammas, mus = grid_of(spec, quick)
@@ -78,7 +78,7 @@ def run_stability_map(study: str, quick: bool = False) -> str:
     log.info("stability map %s: %d cases in %.2f s (%.1f ms per case) -> %s", study, len(rows), wall,
              1e3 * wall / max(len(rows), 1), out / "stability.csv")
     if (out / "map.csv").exists():
-        from .stability_agreement import write_agreement
+        from .agreement import write_agreement
 
         write_agreement(out, rows, spec)
     return str(out / "stability.csv")

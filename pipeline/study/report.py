@@ -8,7 +8,7 @@ import re
 import shutil
 from pathlib import Path
 
-from . import paths
+from .. import paths
 
 ORDER = ("map", "damping", "contact")       # SPEC 7's order; other studies after them, by name
 

@@ -11,7 +11,7 @@ import numpy as np
 
 from solvers.constants import SQUEAL_LEVEL_DB
 
-from .stability_agreement import _time_loop_mode
+from .agreement import _time_loop_mode
 
 # (dy_wr in mm) -> (reference mode, statement of the reference model, L_W band in dB)
 REFERENCE = {
