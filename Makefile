@@ -104,7 +104,7 @@ $(C)/listen.npz: $(CFILE) $(WFILE) $(C)/radiate.npz $(C)/simulate.npz $(LISTEN_S
 FORCE:
 
 # the listening section is in the report when `make listen` has run (as the studies)
-$(BUILD)/report/$(CASE)/report.md: $(CFILE) $(W)/modes.npz $(W)/shapes/gallery.png $(R)/rail.npz $(C)/contact.npz $(C)/greens.npz $(C)/simulate.npz $(C)/radiate.npz pipeline/report.py pipeline/study_report.py $(wildcard $(BUILD)/studies/*/summary.md) $(wildcard $(C)/listen.npz) | $(STAMP)
+$(BUILD)/report/$(CASE)/report.md: $(CFILE) $(W)/modes.npz $(W)/shapes/gallery.png $(R)/rail.npz $(C)/contact.npz $(C)/greens.npz $(C)/simulate.npz $(C)/radiate.npz pipeline/report.py pipeline/study/report.py $(wildcard $(BUILD)/studies/*/summary.md) $(wildcard $(C)/listen.npz) | $(STAMP)
 	$(PY) -m pipeline report --case $(CASE)
 
 mesh: $(W)/mesh.json ## Gmsh cross-section of WHEEL -> build/wheels/WHEEL/section.msh
