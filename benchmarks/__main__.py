@@ -14,6 +14,7 @@ import platform
 import sys
 import time
 from pathlib import Path
+from pipeline.atomic import save_text
 
 ROOT = Path(__file__).resolve().parent.parent
 OUT = ROOT / "docs" / "benchmarks.md"
@@ -76,15 +77,9 @@ runs unless a section says otherwise.
 """ + "\n\n".join(sections) + "\n"
     print(text)
     if chosen and update and OUT.exists():
-        new = update_sections(OUT.read_text(), sections)
-        tmp = OUT.with_name(".benchmarks.md.tmp")
-        tmp.write_text(new)
-        os.replace(tmp, OUT)
+        save_text(update_sections(OUT.read_text(), sections), OUT)
     if not chosen:
-        OUT.parent.mkdir(exist_ok=True)
-        tmp = OUT.with_name(".benchmarks.md.tmp")
-        tmp.write_text(text)
-        os.replace(tmp, OUT)
+        save_text(text, OUT)
     return 0
 
 

@@ -2,11 +2,11 @@
 BV50 head profiles: static NORM solution and the regularized friction curves
 for mu = 0.10 .. 0.60, written to docs/validation/31_contact_positions.md
 (make validate)."""
-import os
 from pathlib import Path
 
 import numpy as np
 import pytest
+from pipeline.atomic import save_text
 
 pytestmark = pytest.mark.validation
 DOCS = Path(__file__).resolve().parents[2] / "docs" / "validation"
@@ -75,6 +75,4 @@ this project's C20 has a worn 23 mm flange so that y^W = -32 mm lies on the trea
 
 ![friction curves and static pressures](validation/contact_positions.png)
 """
-    tmp = DOCS / ".31_contact_positions.md.tmp"
-    tmp.write_text(text)
-    os.replace(tmp, DOCS / "31_contact_positions.md")
+    save_text(text, DOCS / "31_contact_positions.md")

@@ -6,12 +6,12 @@ Slow (a few minutes): marked 'validation', run by `make validate` or
 """
 from __future__ import annotations
 
-import os
 import time
 from pathlib import Path
 
 import numpy as np
 import pytest
+from pipeline.atomic import save_text
 
 ROOT = Path(__file__).resolve().parents[2]
 DOCS = ROOT / "docs" / "validation"
@@ -23,10 +23,7 @@ LAB_COLORS = {"vertical bending": "C0", "lateral bending": "C1", "torsion": "C2"
 
 
 def _write(name: str, text: str) -> None:
-    DOCS.mkdir(parents=True, exist_ok=True)
-    tmp = DOCS / f".{name}.tmp"
-    tmp.write_text(text)
-    os.replace(tmp, DOCS / name)
+    save_text(text, DOCS / name)
 
 
 def _db(G):

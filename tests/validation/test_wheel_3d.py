@@ -33,6 +33,7 @@ import numpy as np
 import pytest
 
 from geometry.outline import Segment
+from pipeline.atomic import save_text
 
 ROOT = Path(__file__).resolve().parents[2]
 N_MAX = 3  # harmonics compared
@@ -398,9 +399,7 @@ def test_harmonic_vs_3d_wheel(tmp_path):
     study = run_study()
     md = markdown(study)
     out = Path(__file__).resolve().parents[2] / "docs" / "validation" / "22_wheel_3d.md"
-    tmp = out.with_name("." + out.name + ".tmp")
-    tmp.write_text(md)
-    os.replace(tmp, out)
+    save_text(md, out)
     print("\n" + md)
     fine = study.runs[-1]
     for r in fine["rows"]:

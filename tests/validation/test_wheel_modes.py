@@ -9,7 +9,6 @@
 from __future__ import annotations
 
 import copy
-import os
 import time
 from pathlib import Path
 
@@ -18,6 +17,7 @@ import pytest
 
 from pipeline.wheel_stage import load_wheel, modes_for_parameters, reference_rows
 from postprocess.mode_reference import markdown_table, match_modes, summary
+from pipeline.atomic import save_text
 
 ROOT = Path(__file__).resolve().parents[2]
 DOCS = ROOT / "docs" / "validation"
@@ -27,10 +27,7 @@ pytestmark = pytest.mark.validation
 
 
 def _write(name: str, text: str) -> None:
-    DOCS.mkdir(parents=True, exist_ok=True)
-    tmp = DOCS / f".{name}.tmp"
-    tmp.write_text(text)
-    os.replace(tmp, DOCS / name)
+    save_text(text, DOCS / name)
 
 
 def _scaled(p: dict, factor: float) -> dict:
