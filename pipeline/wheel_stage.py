@@ -189,7 +189,8 @@ def _boundary_nodes(pts, cells, msh, tag) -> np.ndarray:
 
 def run_shapes(name: str) -> None:
     """One PNG per mode (3D wheel, swept section) and a gallery."""
-    from postprocess.mode_shapes import boundary_edges_from_triangles, gallery_figure, render_mode
+    from postprocess.mode_geometry import boundary_edges_from_triangles
+    from postprocess.mode_shapes import gallery_figure, render_mode
 
     from .atomic import save_figure, save_image
     from .progress import progress

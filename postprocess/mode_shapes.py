@@ -19,11 +19,11 @@ os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
 import numpy as np  # noqa: E402
 import pyvista as pv  # noqa: E402
 
-from .mode_geometry import boundary_edges_from_triangles, displacement_vectors, sweep_surface  # noqa: E402,F401
+from .mode_geometry import displacement_vectors, sweep_surface  # noqa: E402
 
 pv.OFF_SCREEN = True
 
-__all__ = ["render_mode", "gallery_figure", "boundary_edges_from_triangles"]
+__all__ = ["render_mode", "gallery_figure"]
 
 #: Default deformation amplitude as a fraction of the maximum radius.
 DEFAULT_SCALE_FRACTION = 0.06
