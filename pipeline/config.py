@@ -151,6 +151,8 @@ def _issue(error: dict, schema: Mapping) -> ConfigIssue:
         entry = entry[part] if isinstance(entry, Mapping) and part in entry else \
             (entry.item if isinstance(entry, ListOf) and isinstance(part, int) else None)
     key = _dotted(loc)
+    if entry is None and kind != "extra_forbidden":  # not expected; say what pydantic said
+        return ConfigIssue(key, value, error["msg"])
     if kind == "extra_forbidden":
         return ConfigIssue(key, value, _unknown_key_text(str(loc[-1]), list(table)))
     if isinstance(entry, Mapping):
@@ -175,6 +177,18 @@ def _length_issues(data: Mapping, schema: Mapping, prefix: str = "") -> list[Con
     return out
 
 
+def _with_tables(data: Mapping, schema: Mapping) -> dict:
+    """A copy of ``data`` with every absent table of the schema present and empty, so that the
+    model validates it (naming its required keys, filling its defaults) under its own key."""
+    out = dict(data)
+    for key, entry in schema.items():
+        if isinstance(entry, Mapping) and key not in out:
+            out[key] = {}
+        if isinstance(entry, Mapping) and isinstance(out[key], Mapping):
+            out[key] = _with_tables(out[key], entry)
+    return out
+
+
 def validate(data: Mapping, schema: Mapping, source: str) -> dict:
     """Validate ``data`` (e.g. from :func:`tomllib.load`, not modified) against
     ``schema`` (nested dict of :class:`Field` / :class:`ListOf` / sub-dicts);
@@ -191,7 +205,7 @@ def validate(data: Mapping, schema: Mapping, source: str) -> dict:
         raise ConfigError(source, detail=f"top level must be a table, got {_toml_type(data)}")
     problems = _length_issues(data, schema)
     try:
-        resolved = model.model_validate(dict(data)).model_dump(by_alias=True)
+        resolved = model.model_validate(_with_tables(data, schema)).model_dump(by_alias=True)
     except ValidationError as exc:
         problems = [_issue(e, schema) for e in exc.errors()] + problems
     if problems:
