@@ -58,7 +58,7 @@ from solvers.receptance import modal_frf
 
 from . import radiation as R
 from .radiation_surfaces import SurfaceNodes, Surfaces
-from .spectra import amplitude_spectrum, dominant_frequency
+from .spectra import amplitude_spectrum, dominant_frequency, window_samples
 
 PROMINENCE_DB = 20.0  # a tone's peak bin above the median of the bins 4..16 away (dB)
 MAX_SERIES = 3        # harmonic series (fundamentals) fitted at most
@@ -170,11 +170,6 @@ def harmonic_power(model: RadiationModel, f, F2, F3) -> np.ndarray:
 # --------------------------------------------------------------------------
 # force histories -> tones + residual spectrum
 # --------------------------------------------------------------------------
-def hann(N: int) -> np.ndarray:
-    """Periodic Hann window (as ``spectra.amplitude_spectrum``)."""
-    return 0.5 - 0.5 * np.cos(2 * np.pi * np.arange(N) / N)
-
-
 @dataclass
 class ForceDecomposition:
     """``tone_f`` (T,) Hz, ``tone_F2``/``tone_F3`` complex RMS amplitudes (N);
@@ -204,7 +199,7 @@ def refine_frequency(x, dt: float, f_est: float, half_width: float, steps: int =
     f_est: parabolas through log|DTFT| at f - h, f, f + h (vertex clipped to +- h), h from
     half_width shrinking 4-fold per step (the main lobe is smooth and unimodal)."""
     x = np.asarray(x, float)
-    wx = hann(x.size) * (x - x.mean())
+    wx = window_samples("hann", x.size) * (x - x.mean())
     t = np.arange(x.size) * dt
 
     def g(f):
@@ -247,7 +242,7 @@ def decompose_forces(F2, F3, dt: float, *, f_min: float = 20.0, f_max: float = F
     N = X.shape[0]
     if N < 16:
         raise ValueError(f"need at least 16 samples of the forces, got {N}")
-    w = hann(N)
+    w = window_samples("hann", N)
     t = np.arange(N) * dt
     df = 1.0 / (N * dt)
     top = min(f_max, 0.5 / dt - 2 * df)
