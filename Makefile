@@ -76,7 +76,7 @@ help: ## list the targets
 $(STAMP): requirements.txt constraints.txt .apt-stamp
 	@test -x $(PY) || /usr/bin/python3 -m venv --system-site-packages .venv
 	$(PY) -m pip install -q --disable-pip-version-check -c constraints.txt -r requirements.txt
-	$(PY) -c "import dolfinx, slepc4py, gmsh, numba, rocket_fft, pyvista, numpy, dask, distributed; assert numpy.__version__.startswith('1.24'), numpy.__version__"
+	$(PY) -c "import dolfinx, slepc4py, gmsh, numba, rocket_fft, pyvista, numpy, dask, distributed, pydantic; assert numpy.__version__.startswith('1.24'), numpy.__version__"
 	@touch $@
 
 setup: $(STAMP) ## install Debian packages and the Python venv (stamp files; reruns only when the lists change)

@@ -14,8 +14,8 @@ import platform
 import sys
 import time
 from pathlib import Path
+from pipeline.atomic import save_text
 
-from pipeline.artifacts import atomic_write
 
 ROOT = Path(__file__).resolve().parent.parent
 OUT = ROOT / "docs" / "benchmarks.md"
@@ -78,12 +78,9 @@ runs unless a section says otherwise.
 """ + "\n\n".join(sections) + "\n"
     print(text)
     if chosen and update and OUT.exists():
-        new = update_sections(OUT.read_text(), sections)
-        with atomic_write(OUT) as tmp:
-            tmp.write_text(new)
+        save_text(update_sections(OUT.read_text(), sections), OUT)
     if not chosen:
-        with atomic_write(OUT) as tmp:
-            tmp.write_text(text)
+        save_text(text, OUT)
     return 0
 
 

@@ -15,7 +15,8 @@ import numpy as np
 
 from benchmarks.timing import median_time
 from pipeline import paths
-from pipeline.radiate_stage import F_MAX, load_radiation_model, sound_power_of_forces
+from pipeline.radiate_stage import load_radiation_model, sound_power_of_forces
+from solvers.constants import F_MAX_HZ as F_MAX
 from postprocess.force_radiation import frequency_grid_for, unit_force_curve
 
 

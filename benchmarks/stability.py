@@ -22,9 +22,9 @@ from solvers.stability import Basis, screen
 
 
 def run() -> str:
-    from pipeline.stability_map import screen_rows
-    from pipeline.study_map import grid_of
-    from pipeline.study_stage import load_study
+    from pipeline.study.screen import screen_rows
+    from pipeline.study.map import grid_of
+    from pipeline.study.stage import load_study
 
     _, lm, _, _ = case_linear_model("default")
     t_basis = median_time(lambda: Basis(lm), 5, warm=1)
@@ -37,7 +37,7 @@ def run() -> str:
     rows = screen_rows("default", gammas, mus)
     t_map = time.perf_counter() - t0
     tl = ""
-    table = paths.BUILD / "studies" / "map" / "map.csv"
+    table = paths.build() / "studies" / "map" / "map.csv"
     if table.exists():
         with open(table, newline="") as fh:
             w = [float(r["wall_s"]) for r in csv.DictReader(fh) if r.get("wall_s") not in (None, "", "nan")]

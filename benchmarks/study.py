@@ -49,11 +49,13 @@ early_stop = {early}
 def _run(tmp: Path, early: bool, workers: int, quick: bool) -> dict:
     import csv
 
-    from pipeline import study_stage
+    import os
+
+    from pipeline.study import stage as study_stage
 
     name = f"bench_{'early' if early else 'full'}"
     (tmp / f"{name}.toml").write_text(STUDY.replace('"bench"', f'"{name}"').format(early=str(early).lower()))
-    study_stage.STUDIES = tmp
+    os.environ["SQUEAL_STUDY_DIR"] = str(tmp)
     out = tmp / f"out_{name}_{workers}"
     t0 = time.perf_counter()
     study_stage.run_study(name, quick=quick, workers=workers, out=out, progress=False)

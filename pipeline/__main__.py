@@ -87,15 +87,15 @@ def main(argv=None) -> int:
             load_rail_params(args.rail)
             case_path = paths.case_file(args.case)
             if not case_path.exists():
-                raise ConfigError(str(case_path), detail=f"no such case; available: {paths.available(paths.CASES)}")
+                raise ConfigError(str(case_path), detail=f"no such case; available: {paths.available(paths.cases())}")
             load(case_path, CASE)
             print(f"wheel {args.wheel}, rail {args.rail} and case {args.case}: configuration OK")
         elif args.stage == "stability_map":
-            from .stability_map import run_stability_map
+            from .study.screen import run_stability_map
 
             print(run_stability_map(args.study, quick=args.quick))
         elif args.stage == "study":
-            from .study_stage import run_study
+            from .study.stage import run_study
 
             print(run_study(args.study, quick=args.quick, scheduler=args.scheduler, workers=args.workers,
                             out=args.out, progress=not args.no_progress))

@@ -3,47 +3,31 @@
 Every expensive intermediate result of the pipeline (meshes, modal bases,
 eigenvalue sweeps, ...) is written through this module, which guarantees:
 
-* **Atomicity** -- a file at the target path is always complete.  Data is
-  written to a temporary file in the same directory, flushed to disk and
-  then ``os.replace``-d onto the target.  A crash, Ctrl-C or ``kill -9``
-  in the middle of a write leaves the previous target (or none) in place,
-  never a truncated one.  (A killed process can leave its hidden temporary
-  file ``.<name>.tmp-<pid>-<random><suffix>`` behind; it is harmless and
-  can be deleted.)
+* **Atomicity** -- a file at the target path is always complete
+  (``pipeline.atomic.atomic_write``).
 * **Provenance** -- ``.npz`` and ``.json`` artifacts carry a record of what
-  produced them: artifact kind, the resolved configuration and its hash,
-  time, git revision and library versions.
+  produced them (``pipeline.provenance``): artifact kind, the resolved
+  configuration and its hash, time, git revision and library versions.
 * **Checked loading** -- :func:`load_npz` / :func:`load_json` refuse files
   that are missing, truncated, of the wrong kind or built from a different
   configuration (stale), with a message that names the file and says what
   to do, instead of a raw ``zipfile``/``KeyError`` traceback.
-
-Only the standard library and numpy are imported at module import time;
-the heavy libraries whose versions are recorded (dolfinx, PETSc, SLEPc,
-gmsh, numba, scipy) are imported lazily, on the first call to
-:func:`provenance`.
 """
 
 from __future__ import annotations
 
-import contextlib
-import copy
 import csv
-import functools
-import importlib
 import json
 import os
-import platform
-import secrets
-import subprocess
 import zipfile
-from datetime import datetime, timezone
 from pathlib import Path
-from typing import Any, Iterable, Iterator, Mapping, Sequence
+from typing import Any, Iterable, Mapping, Sequence
 
 import numpy as np
 
+from .atomic import atomic_write
 from .config import config_hash
+from .provenance import provenance
 
 __all__ = [
     "ArtifactError",
@@ -59,11 +43,6 @@ __all__ = [
 
 #: Name of the provenance entry inside ``.npz`` files and ``.json`` envelopes.
 PROVENANCE_KEY = "__provenance__"
-
-#: Root of the git work tree whose revision is recorded (this repository).
-_REPO_ROOT = Path(__file__).resolve().parent.parent
-
-NOT_INSTALLED = "not installed"
 
 
 class ArtifactError(RuntimeError):
@@ -81,191 +60,6 @@ class ArtifactError(RuntimeError):
     def __reduce__(self):
         # Keep the exception picklable (multiprocessing workers re-raise it).
         return (type(self), (self.path, self.problem))
-
-
-# --------------------------------------------------------------------------
-# Atomic writing
-# --------------------------------------------------------------------------
-
-
-def _fsync_path(path: Path) -> None:
-    """Flush a file's data to stable storage."""
-    fd = os.open(path, os.O_RDONLY)
-    try:
-        os.fsync(fd)
-    finally:
-        os.close(fd)
-
-
-def _fsync_dir(directory: Path) -> None:
-    """Persist a rename by fsyncing the directory (best effort; not on all OSes)."""
-    try:
-        fd = os.open(directory, os.O_RDONLY | getattr(os, "O_DIRECTORY", 0))
-    except OSError:
-        return
-    try:
-        os.fsync(fd)
-    except OSError:
-        pass
-    finally:
-        os.close(fd)
-
-
-@contextlib.contextmanager
-def atomic_write(path: str | os.PathLike) -> Iterator[Path]:
-    """Context manager yielding a temporary path that replaces ``path`` on success.
-
-    ::
-
-        with atomic_write("build/modes/r920.msh") as tmp:
-            gmsh.write(str(tmp))
-
-    The temporary file ``.<name>.tmp-<pid>-<random><suffix>`` lives in the
-    target's directory (so the final ``os.replace`` is an atomic rename on
-    the same file system) and keeps the target's suffix, so libraries that
-    choose the format from the extension (numpy ``.npz``, gmsh ``.msh``)
-    behave as for the target.  It is created empty before the body runs;
-    the body may overwrite or truncate it.
-
-    On normal exit the file is fsync-ed and renamed onto ``path``.  If the
-    body raises (anything, including ``KeyboardInterrupt``) the temporary
-    file is deleted and the exception propagates; the target is untouched.
-    Parent directories are created as needed.
-    """
-    target = Path(path)
-    target.parent.mkdir(parents=True, exist_ok=True)
-    # O_EXCL guarantees that the name is ours; mode 0o666 lets the umask
-    # decide the final permissions, as for a normally created file.
-    while True:
-        tmp = target.with_name(
-            f".{target.name}.tmp-{os.getpid()}-{secrets.token_hex(4)}{target.suffix}"
-        )
-        try:
-            fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
-        except FileExistsError:  # astronomically unlikely; just pick another name
-            continue
-        os.close(fd)
-        break
-    try:
-        yield tmp
-        if not tmp.exists():
-            raise FileNotFoundError(
-                f"atomic_write: temporary file {tmp} disappeared before it could "
-                f"replace {target} (did the writer rename or delete it?)"
-            )
-        _fsync_path(tmp)
-        os.replace(tmp, target)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            tmp.unlink()
-        raise
-    _fsync_dir(target.parent)
-
-
-# --------------------------------------------------------------------------
-# Provenance
-# --------------------------------------------------------------------------
-
-
-def _git(*args: str) -> str:
-    """Run a read-only git command in the repository; raise on any failure."""
-    result = subprocess.run(
-        # --no-optional-locks: `git status` must not write the index, so we
-        # never interfere with a concurrent git operation of the user.
-        ["git", "--no-optional-locks", "-C", str(_REPO_ROOT), *args],
-        capture_output=True,
-        text=True,
-        timeout=10,
-        check=True,
-        stdin=subprocess.DEVNULL,
-    )
-    return result.stdout.strip()
-
-
-def git_revision() -> str:
-    """``git rev-parse HEAD`` of the repository, ``+ "-dirty"`` if modified.
-
-    "Dirty" means tracked files are modified or untracked, non-ignored files
-    exist (new source files matter for reproducibility; ignored build
-    outputs do not).  Returns ``"unknown"`` if git is unavailable or this is
-    not a git checkout -- this function never raises.
-    """
-    try:
-        revision = _git("rev-parse", "HEAD")
-    except (OSError, subprocess.SubprocessError, ValueError):
-        return "unknown"
-    if not revision:
-        return "unknown"
-    try:
-        if _git("status", "--porcelain"):
-            revision += "-dirty"
-    except (OSError, subprocess.SubprocessError, ValueError):
-        revision += "-dirty?"  # revision known, cleanliness could not be checked
-    return revision
-
-
-def _module_version(module_name: str, attribute: str = "__version__") -> str:
-    """Version of an importable module, or ``'not installed'``."""
-    try:
-        module = importlib.import_module(module_name)
-    except ImportError:
-        return NOT_INSTALLED
-    except Exception as exc:  # noqa: BLE001 - e.g. a broken MPI/PETSc install
-        return f"import failed ({type(exc).__name__}: {exc})"
-    return str(getattr(module, attribute, "unknown"))
-
-
-def _petsc_like_version(module_name: str) -> str:
-    """Version of PETSc/SLEPc via ``<module>.Sys.getVersion()`` (a tuple)."""
-    try:
-        module = importlib.import_module(module_name)
-        version = module.Sys.getVersion()
-    except ImportError:
-        return NOT_INSTALLED
-    except Exception as exc:  # noqa: BLE001
-        return f"import failed ({type(exc).__name__}: {exc})"
-    if isinstance(version, tuple):
-        return ".".join(str(part) for part in version)
-    return str(version)
-
-
-@functools.lru_cache(maxsize=None)
-def library_versions() -> dict[str, str]:
-    """Versions of the numerical stack (imported lazily, cached per process)."""
-    return {
-        "numpy": np.__version__,
-        "dolfinx": _module_version("dolfinx"),
-        "petsc4py": _module_version("petsc4py"),
-        "PETSc": _petsc_like_version("petsc4py.PETSc"),
-        "slepc4py": _module_version("slepc4py"),
-        "SLEPc": _petsc_like_version("slepc4py.SLEPc"),
-        "gmsh": _module_version("gmsh"),
-        "numba": _module_version("numba"),
-        "scipy": _module_version("scipy"),
-    }
-
-
-def provenance(kind: str, config: Mapping) -> dict:
-    """The provenance record stored with an artifact.
-
-    Keys: ``kind``, ``config`` (the resolved configuration), ``config_hash``
-    (:func:`pipeline.config.config_hash`), ``created_utc`` (ISO 8601),
-    ``git_revision`` (see :func:`git_revision`), ``python`` and ``versions``
-    (numpy, dolfinx, petsc4py, PETSc, slepc4py, SLEPc, gmsh, numba, scipy;
-    ``'not installed'`` for missing ones).
-    """
-    if not isinstance(kind, str) or not kind:
-        raise ValueError(f"artifact kind must be a non-empty string; got {kind!r}")
-    return {
-        "kind": kind,
-        # A copy: later changes to the caller's dict must not alter the record.
-        "config": copy.deepcopy(config),
-        "config_hash": config_hash(config),
-        "created_utc": datetime.now(timezone.utc).isoformat(timespec="seconds"),
-        "git_revision": git_revision(),
-        "python": platform.python_version(),
-        "versions": dict(library_versions()),
-    }
 
 
 def _flatten(cfg: Any, prefix: str = "") -> dict[str, Any]:

@@ -21,6 +21,7 @@ import time
 import numpy as np
 
 from . import artifacts, paths
+from .atomic import save_figure
 
 log = logging.getLogger("pipeline.contact")
 
@@ -156,24 +157,7 @@ def run_contact(case: str) -> dict:
 
 
 def plot_rf(a: dict, path, title: str) -> None:
-    """F2/F3 vs slip velocity for every mu (the regularized friction curves)."""
-    import matplotlib
+    """``postprocess.plots.contact.friction_curves_figure``, saved atomically to ``path``."""
+    from postprocess.plots.contact import friction_curves_figure
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(6.5, 4))
-    colours = plt.cm.viridis(np.linspace(0, 0.9, len(a["mu_values"])))
-    for i, mu in enumerate(a["mu_values"]):
-        n = a["rf_n"][i]
-        ax.plot(a["rf_s"][i, :n], a["rf_mu"][i, :n], color=colours[i], label=f"mu = {mu:.2f}")
-    ax.set_xlabel("slip velocity s (m/s)")
-    ax.set_ylabel("mu_RF = F2 / F3")
-    ax.set_xlim(0, float(a["rf_s"][:, -1].max()) * 0.35)
-    ax.set_title(f"Regularized friction curves, {title}")
-    ax.legend(fontsize=7, ncol=2)
-    ax.grid(alpha=0.3)
-    fig.tight_layout()
-    with artifacts.atomic_write(path) as tmp:
-        fig.savefig(tmp, dpi=100)
-    plt.close(fig)
+    save_figure(friction_curves_figure(a, title), path, dpi=100)

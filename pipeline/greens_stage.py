@@ -34,13 +34,16 @@ import time
 
 import numpy as np
 
+from solvers.constants import F_MAX_HZ
+
 from . import artifacts, paths
+from .atomic import save_figure
 
 log = logging.getLogger("pipeline.greens")
 
-RAIL_F_MAX = 6500.0  # upper limit of the rail model (Hz)
+RAIL_F_MAX = F_MAX_HZ  # upper limit of the rail model (Hz)
 RAIL_F_TAPER = 9000.0  # the rail receptance is rolled off smoothly from RAIL_F_MAX to zero here (Hz)
-WHEEL_BAND_LIMIT = 6500.0  # the wheel kernel's DFT matches the receptance up to here (band-limited correction)
+WHEEL_BAND_LIMIT = F_MAX_HZ  # the wheel kernel's DFT matches the receptance up to here (band-limited correction)
 WHEEL_DECAY_DB = 120.0  # decay of the wheel kernel by N_t/2 dt (choose_grid)
 KROPP_TAPS = 16  # samples refitted by the band-limited correction
 KROPP_FIT_TOL = 1e-3  # its pointwise tolerance relative to |G|
@@ -182,26 +185,7 @@ def run_greens(case: str) -> dict:
 
 
 def plot_kernels(a: dict, path, case: str) -> None:
-    import matplotlib
+    """``postprocess.plots.greens.kernels_figure``, saved atomically to ``path``."""
+    from postprocess.plots.greens import kernels_figure
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, axs = plt.subplots(2, 1, figsize=(8, 6))
-    tw = np.arange(len(a["wheel_kernel"])) * a["dt"]
-    tr = np.arange(len(a["rail_kernel"])) * a["dt"]
-    for (i, j, lab) in ((0, 0, "g22"), (1, 1, "g33"), (0, 1, "g23")):
-        axs[0].plot(1e3 * tw, a["wheel_kernel"][:, i, j], lw=0.6, label=lab)
-        axs[1].plot(1e3 * tr, a["rail_kernel"][:, i, j], lw=0.8, label=lab)
-    axs[0].set_title(f"{case}: wheel Green's function (Kropp, band-limited to {a['wheel_band_limit'] / 1e3:.1f} kHz), "
-                     f"first {1e3 * tw[-1]:.0f} ms")
-    axs[1].set_title(f"rail moving Green's function, v = {3.6 * a['v']:.0f} km/h")
-    for ax in axs:
-        ax.set_xlabel("time (ms)")
-        ax.set_ylabel("m/N")
-        ax.legend(fontsize=8)
-        ax.grid(alpha=0.3)
-    fig.tight_layout()
-    with artifacts.atomic_write(path) as tmp:
-        fig.savefig(tmp, dpi=90)
-    plt.close(fig)
+    save_figure(kernels_figure(a, case), path, dpi=90)

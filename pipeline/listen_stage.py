@@ -39,6 +39,7 @@ import logging
 import numpy as np
 
 from . import artifacts, paths
+from .atomic import save_figure
 from .config import ConfigError, config_hash, load, validate
 
 log = logging.getLogger("pipeline.listen")
@@ -67,7 +68,7 @@ def listener_inputs(case: str, distance: float | None = None, height: float | No
 
     cpath = paths.case_file(case)
     if not cpath.exists():
-        raise ConfigError(str(cpath), detail=f"no such case; available: {paths.available(paths.CASES)}")
+        raise ConfigError(str(cpath), detail=f"no such case; available: {paths.available(paths.cases())}")
     c = load(cpath, CASE)
     lis = dict(c["listener"])
     over = {f"--{k}": v for k, v in (("distance", distance), ("height", height)) if v is not None}
@@ -235,7 +236,6 @@ def _num(x):
 def run_listen(case: str, distance=None, height=None, allow_silent: bool = False) -> dict:
     arrays, wav, cal, cfg = compute_listening(case, distance, height, allow_silent)
     out = paths.case_dir(case)
-    from .listen_plot import plot_listening
 
     plot_listening(arrays, out / "listen.png", case)
     with artifacts.atomic_write(out / "listen.wav") as tmp:
@@ -261,3 +261,10 @@ def load_listening(case: str) -> tuple[dict, dict]:
         raise artifacts.ArtifactError(path, f"stale artifact (its radiate, simulate, wheel or settings changed); "
                                       f"run `make listen CASE={case}`")
     return a, prov
+
+
+def plot_listening(a: dict, path, case: str) -> None:
+    """listen.png (``postprocess.plots.listen.listening_figure``), saved atomically to ``path``."""
+    from postprocess.plots.listen import listening_figure
+
+    save_figure(listening_figure(a, case), path, dpi=90)

@@ -1,43 +1,90 @@
-"""Where inputs live and where artifacts land (one folder per input name)."""
+"""Where inputs live and where artifacts land (one folder per input name).
+
+The folders are overridable through the environment (tests and users build
+elsewhere without touching the tree): ``SQUEAL_BUILD_DIR``, ``SQUEAL_WHEEL_DIR``,
+``SQUEAL_CASE_DIR``, ``SQUEAL_RAIL_DIR``, ``SQUEAL_STUDY_DIR``.  They are read
+when a function is called, not when this module is imported, so a change of
+the environment (a test's monkeypatch, a worker's) takes effect.
+"""
 from __future__ import annotations
 
 import os
 from pathlib import Path
 
+#: The repository (code and input files); fixed by where this file is.
 ROOT = Path(__file__).resolve().parent.parent
-# overridable so tests (and users) can build elsewhere without touching the tree
-BUILD = Path(os.environ.get("SQUEAL_BUILD_DIR", ROOT / "build"))
-WHEELS = Path(os.environ.get("SQUEAL_WHEEL_DIR", ROOT / "geometry" / "wheels"))
-CASES = Path(os.environ.get("SQUEAL_CASE_DIR", ROOT / "pipeline" / "cases"))
-RAILS = Path(os.environ.get("SQUEAL_RAIL_DIR", ROOT / "geometry" / "rails"))
+
+
+def _folder(variable: str, default: Path) -> Path:
+    return Path(os.environ.get(variable, default))
+
+
+def build() -> Path:
+    """The build folder (``SQUEAL_BUILD_DIR``, default ``<repo>/build``)."""
+    return _folder("SQUEAL_BUILD_DIR", ROOT / "build")
+
+
+def wheels() -> Path:
+    """Wheel files ``<name>.toml`` (``SQUEAL_WHEEL_DIR``, default geometry/wheels)."""
+    return _folder("SQUEAL_WHEEL_DIR", ROOT / "geometry" / "wheels")
+
+
+def cases() -> Path:
+    """Case files (``SQUEAL_CASE_DIR``, default pipeline/cases)."""
+    return _folder("SQUEAL_CASE_DIR", ROOT / "pipeline" / "cases")
+
+
+def rails() -> Path:
+    """Rail files (``SQUEAL_RAIL_DIR``, default geometry/rails)."""
+    return _folder("SQUEAL_RAIL_DIR", ROOT / "geometry" / "rails")
+
+
+def studies() -> Path:
+    """Study files (``SQUEAL_STUDY_DIR``, default pipeline/studies)."""
+    return _folder("SQUEAL_STUDY_DIR", ROOT / "pipeline" / "studies")
 
 
 def rail_file(name: str) -> Path:
-    return RAILS / f"{name}.toml"
+    return rails() / f"{name}.toml"
 
 
 def rail_dir(name: str) -> Path:
     """build/rails/<name>/: section.msh, rail.npz, receptance.png, dispersion.png."""
-    return BUILD / "rails" / name
+    return build() / "rails" / name
 
 
 def case_dir(name: str) -> Path:
     """build/cases/<name>/: contact.npz, contact_rf.png (and later stages)."""
-    return BUILD / "cases" / name
+    return build() / "cases" / name
 
 
 def case_file(name: str) -> Path:
-    return CASES / f"{name}.toml"
+    return cases() / f"{name}.toml"
 
 
 def wheel_file(name: str) -> Path:
-    return WHEELS / f"{name}.toml"
+    return wheels() / f"{name}.toml"
 
 
 def wheel_dir(name: str) -> Path:
     """build/wheels/<name>/: section.msh, modes.npz, modes.csv, shapes/."""
-    return BUILD / "wheels" / name
+    return build() / "wheels" / name
+
+
+def study_file(name: str) -> Path:
+    return studies() / f"{name}.toml"
 
 
 def available(folder: Path) -> list[str]:
     return sorted(p.stem for p in folder.glob("*.toml"))
+
+
+def shown(path) -> str:
+    """A path as reports print it: relative to the repository when inside it
+    (``pipeline/cases/default.toml``), else its file name -- never an absolute
+    path of the machine that ran."""
+    p = Path(path)
+    try:
+        return p.resolve().relative_to(ROOT).as_posix()
+    except ValueError:
+        return p.name

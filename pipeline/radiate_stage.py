@@ -47,15 +47,16 @@ import time
 
 import numpy as np
 
+from solvers.constants import F_MAX_HZ, SQUEAL_LEVEL_DB
+
 from . import artifacts, paths
+from .atomic import save_figure
 
 log = logging.getLogger("pipeline.radiate")
 
-F_MAX = 6500.0  # Hz, top of the band = greens_stage.RAIL_F_MAX (the rail model's limit)
 F_MIN = 20.0  # Hz, lowest tone (as solvers.interaction.squeal_measures)
-L_F2_SQUEAL = 10.0  # dB: SPEC 6, sound power is meaningful for L_F2 >= 10 dB
 SETTINGS = {"rho": 1.21, "c0": 343.0, "faces": 2, "web_thickness": "tyre", "torsion": False, "rigid": True,
-            "window": "hann", "f_min": F_MIN, "f_max": F_MAX, "prominence_db": 20.0, "unit_f": [100.0, F_MAX]}
+            "window": "hann", "f_min": F_MIN, "f_max": F_MAX_HZ, "prominence_db": 20.0, "unit_f": [100.0, F_MAX_HZ]}
 
 
 def _case_wheel(case: str):
@@ -75,15 +76,15 @@ def load_radiation_model(case: str, zeta_overrides: dict | None = None):
     exactly as the Green's functions stage does, so the wheel is the simulation's), damping [4.11] (``zeta_overrides`` {mode index: zeta} as
     ``solvers.receptance.modal_damping``).  Load once, reuse for many force sets."""
     from geometry.wheel import surface_radii, tread_radius, wheel_segments
-    from postprocess import radiation as R
     from postprocess.force_radiation import build_model
+    from postprocess.radiation_surfaces import radiation_surfaces, surface_nodes
     from solvers.receptance import contact_point, contact_shape, modal_damping
 
     c, pw, modes, mprov, y_w = _case_wheel(case)
-    surf = R.radiation_surfaces(surface_radii(pw), wheel_segments(pw), web_thickness=SETTINGS["web_thickness"],
+    surf = radiation_surfaces(surface_radii(pw), wheel_segments(pw), web_thickness=SETTINGS["web_thickness"],
                                 faces=SETTINGS["faces"])
     bnd = {k[len("boundary_"):]: v for k, v in modes.items() if k.startswith("boundary_") and k != "boundary_names"}
-    nodes = R.surface_nodes(modes["points"], bnd, surf)
+    nodes = surface_nodes(modes["points"], bnd, surf)
     running = np.unique(np.concatenate([modes["boundary_tread"], modes["boundary_flange"]]))
     where = contact_point(modes["points"], running, y_w, pw["axle"]["rolling_circle_z"],
                           r_of_y=lambda y: tread_radius(pw, y), cells=modes["cells"])
@@ -92,7 +93,7 @@ def load_radiation_model(case: str, zeta_overrides: dict | None = None):
     meta = {"case": case, "wheel": c["wheel"], "y_wheel": y_w, "contact": where, "contact_node": where.node,
             "surfaces": surf, "nodes": nodes, "modes": modes, "modes_hash": mprov["config_hash"]}
     return build_model(modes, surf, nodes, contact_shape(modes["shapes"], where), zeta, rho=SETTINGS["rho"],
-                       c0=SETTINGS["c0"], f_min=F_MIN, f_max=F_MAX, meta=meta)
+                       c0=SETTINGS["c0"], f_min=F_MIN, f_max=F_MAX_HZ, meta=meta)
 
 
 def sound_power_of_forces(model, F, dt: float) -> dict:
@@ -161,7 +162,7 @@ def compute_radiation(case: str, model=None) -> tuple[dict, object, dict]:
         sm, s_h = -1, -1
     fs, S2 = amplitude_spectrum(F[:, 1], dt, scaling="rms")
     _, S3 = amplitude_spectrum(F[:, 2], dt, scaling="rms")
-    band = (fs > 0) & (fs <= F_MAX)
+    band = (fs > 0) & (fs <= F_MAX_HZ)
     fu = frequency_grid_for(model, *SETTINGS["unit_f"])
     ul, ur = unit_force_curve(model, fu, "lateral"), unit_force_curve(model, fu, "radial")
     L_F2 = float(sim["L_F2"])
@@ -177,7 +178,7 @@ def compute_radiation(case: str, model=None) -> tuple[dict, object, dict]:
         "tone_f": d.tone_f, "tone_F2": d.tone_F2, "tone_F3": d.tone_F3, "tone_series": d.series,
         "force_f": fs[band], "F2_spectrum": S2[band], "F3_spectrum": S3[band], "residual_F2": d.R2,
         "residual_F3": d.R3, "L_F2": np.float64(L_F2), "f_dominant": np.float64(sim["f_dominant"]),
-        "stop_reason": np.array(str(sim["stop_reason"])), "meaningful": np.bool_(L_F2 >= L_F2_SQUEAL),
+        "stop_reason": np.array(str(sim["stop_reason"])), "meaningful": np.bool_(L_F2 >= SQUEAL_LEVEL_DB),
         "dt": np.float64(dt), "stretch_s": np.float64(len(t) * dt),
         "unit_f": fu, "unit_W_lateral": ul.sum(0), "unit_W_radial": ur.sum(0), "unit_W_n_lateral": ul,
         "unit_W_n_radial": ur, "zeta": model.zeta, "y_wheel": np.float64(model.meta["y_wheel"]),
@@ -206,57 +207,13 @@ def run_radiate(case: str) -> dict:
     artifacts.save_npz(out / "radiate.npz", "radiate", cfg, **arrays)
     log.info("radiate %s: L_W = %.1f dB re 1e-12 W, peak %.1f Hz (%s), %d tones; L_F2 = %.1f dB (%s) -> %s",
              case, arrays["L_W"], arrays["f_sound"], arrays["sound_mode_label"], len(arrays["tone_f"]),
-             arrays["L_F2"], "squeal" if arrays["meaningful"] else "below 10 dB: not meaningful",
+             arrays["L_F2"], "squeal" if arrays["meaningful"] else f"below {SQUEAL_LEVEL_DB:g} dB: not meaningful",
              out / "radiate.npz")
     return arrays
 
 
-def _db(x, ref):
-    with np.errstate(divide="ignore"):
-        return 10 * np.log10(np.maximum(np.asarray(x, float), 1e-300) / ref)
-
-
 def plot_radiation(a: dict, path, case: str) -> None:
-    """Three panels: |F2|, |F3| spectra (RMS) with the tones; the sound power per
-    bin/tone; the unit-force sound power (lateral, radial)."""
-    import matplotlib
+    """radiate.png (``postprocess.plots.radiate.radiation_figure``), written atomically."""
+    from postprocess.plots.radiate import radiation_figure
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, axs = plt.subplots(3, 1, figsize=(9, 10), sharex=True)
-    ff = a["force_f"]
-    axs[0].plot(ff, _db(np.abs(a["F2_spectrum"]) ** 2, 1.0), lw=0.7, label="F2")
-    axs[0].plot(ff, _db(np.abs(a["F3_spectrum"]) ** 2, 1.0), lw=0.7, label="F3")
-    if len(a["tone_f"]):
-        axs[0].plot(a["tone_f"], _db(np.abs(a["tone_F2"]) ** 2, 1.0), "v", ms=5, label="tones (F2, fitted)")
-    axs[0].set_ylabel("dB re 1 N (RMS)")
-    axs[0].set_title(f"{case}: {a['stop_reason']}, L_F2 = {float(a['L_F2']):.1f} dB"
-                     + ("" if a["meaningful"] else " (< 10 dB: sound power not meaningful, SPEC 6)"))
-    tone = a["is_tone"]
-    LW = _db(a["W"], 1e-12)
-    top = LW.max() if np.isfinite(LW.max()) else 0.0
-    axs[1].plot(a["f"][~tone], LW[~tone], "k", lw=0.6, label="residual, per bin")
-    if tone.any():
-        axs[1].vlines(a["f"][tone], top - 150, LW[tone], color="C3", lw=1.5, label="tones")
-    axs[1].set_ylim(top - 150, top + 10)
-    axs[1].set_ylabel("L_W (dB re 1e-12 W)")
-    axs[1].set_title(f"sound power: L_W = {float(a['L_W']):.1f} dB, peak {float(a['f_sound']):.1f} Hz "
-                     f"{a['sound_mode_label']}")
-    fu = a["unit_f"]
-    axs[2].plot(fu, _db(a["unit_W_lateral"], 1e-12), lw=0.8, label="unit lateral force F2 = 1 N")
-    axs[2].plot(fu, _db(a["unit_W_radial"], 1e-12), lw=0.8, label="unit radial force F3 = 1 N")
-    top = max(_db(a["unit_W_lateral"], 1e-12).max(), _db(a["unit_W_radial"], 1e-12).max())
-    axs[2].set_ylim(top - 100, top + 5)
-    axs[2].set_ylabel("dB re 1e-12 W per N^2")
-    axs[2].set_xlabel("frequency (Hz)")
-    axs[2].set_title(f"unit-force sound power at y^W = {1e3 * float(a['y_wheel']):+.0f} mm")
-    for ax in axs:
-        ax.set_xscale("log")
-        ax.set_xlim(50, F_MAX)
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
-    fig.tight_layout()
-    with artifacts.atomic_write(path) as tmp:
-        fig.savefig(tmp, dpi=90)
-    plt.close(fig)
+    save_figure(radiation_figure(a, case), path, dpi=90)

@@ -15,7 +15,10 @@ import time
 
 import numpy as np
 
+from solvers.constants import F_MAX_HZ, RAIL_F_MIN_HZ
+
 from . import artifacts, paths
+from .atomic import save_figure
 from .config import load_geometry
 from .schemas import RAIL
 
@@ -31,7 +34,7 @@ def load_rail_params(name: str) -> tuple[dict, str]:
     from geometry.rail import check_rail
 
     path = paths.rail_file(name)
-    return load_geometry(path, RAIL, check_rail, "rail", paths.available(paths.RAILS)), str(path)
+    return load_geometry(path, RAIL, check_rail, "rail", paths.available(paths.rails())), str(path)
 
 
 def run_rail(name: str) -> dict:
@@ -46,7 +49,7 @@ def run_rail(name: str) -> dict:
         mesh_rail(p, str(tmp))
     model = build_rail_model(p, str(out / "section.msh"))
     t1 = time.perf_counter()
-    freqs = np.geomspace(25.0, 6500.0, N_FREQ)
+    freqs = np.geomspace(RAIL_F_MIN_HZ, F_MAX_HZ, N_FREQ)
     arrays = stage_arrays(model, freqs, np.linspace(0.0, X_MAX, N_DIST))
     t2 = time.perf_counter()
     plot_receptances(arrays, out / "receptance.png", name)
@@ -57,59 +60,15 @@ def run_rail(name: str) -> dict:
     return arrays
 
 
-def _db(G):
-    return 20 * np.log10(np.maximum(np.abs(G), 1e-30))
-
-
 def plot_receptances(a: dict, path, name: str) -> None:
-    """The usual rail receptance figure: |G| in dB re 1 m/N and phase."""
-    import matplotlib
+    """``postprocess.plots.rail.receptance_figure``, saved atomically to ``path``."""
+    from postprocess.plots.rail import receptance_figure
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    f, G = a["f_hz"], a["G"][:, 0]  # x = 0: point receptances
-    fig, axs = plt.subplots(3, 2, figsize=(11, 9), sharex=True)
-    for row, (title, i, j) in enumerate([("G33 vertical", 1, 1), ("G22 lateral", 0, 0), ("G23 cross", 0, 1)]):
-        for ip, yp in enumerate(a["point_y_m"]):
-            axs[row, 0].semilogx(f, _db(G[ip, :, i, j]), label=f"y^R = {1e3 * yp:+.0f} mm")
-            axs[row, 1].semilogx(f, np.degrees(np.angle(G[ip, :, i, j])))
-        axs[row, 0].set_ylabel(f"{title}\n|G| (dB re 1 m/N)")
-        axs[row, 1].set_ylabel("phase (deg)")
-        for ax in axs[row]:
-            ax.grid(alpha=0.3, which="both")
-    axs[0, 0].legend(fontsize=8)
-    for ax in axs[-1]:
-        ax.set_xlabel("frequency (Hz)")
-    fig.suptitle(f"{name}: point receptances at the rail-head contact points", fontsize=10)
-    fig.tight_layout()
-    with artifacts.atomic_write(path) as tmp:
-        fig.savefig(tmp, dpi=90)
-    plt.close(fig)
+    save_figure(receptance_figure(a, name), path, dpi=90)
 
 
 def plot_dispersion(a: dict, path, name: str) -> None:
-    """Dispersion curves f(k) of the free and supported rail, both families."""
-    import matplotlib
+    """``postprocess.plots.rail.dispersion_figure``, saved atomically to ``path``."""
+    from postprocess.plots.rail import dispersion_figure
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    k = a["disp_k"]
-    fig, axs = plt.subplots(1, 2, figsize=(11, 4.5), sharey=True)
-    for ax, sup in zip(axs, ("free", "supported")):
-        for fam, style in (("sym", "-"), ("anti", "--")):
-            F = a[f"disp_{sup}_{fam}_f_hz"]
-            labels = a[f"disp_{sup}_{fam}_label"]
-            for b in range(F.shape[1]):
-                ax.plot(k, F[:, b], style, lw=1.2, label=f"{fam}: {labels[b]}")
-        ax.set_xlabel("wavenumber k (rad/m)")
-        ax.set_title(f"{sup} rail")
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=6, ncol=2)
-    axs[0].set_ylabel("frequency (Hz)")
-    fig.suptitle(f"{name}: dispersion (symmetric and antisymmetric wave families)", fontsize=10)
-    fig.tight_layout()
-    with artifacts.atomic_write(path) as tmp:
-        fig.savefig(tmp, dpi=90)
-    plt.close(fig)
+    save_figure(dispersion_figure(a, name), path, dpi=90)

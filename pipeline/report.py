@@ -1,7 +1,7 @@
 """Report: one self-contained Markdown file (figures copied beside it) that
 gathers what the stages produced for a case.  Sections appear as their
 stages exist: wheel, rail, contact, Green's functions, interaction, radiation,
-and the studies found in build/studies/ (pipeline/study_report.py).
+and the studies found in build/studies/ (pipeline/study/report.py).
 
 Output: build/report/<case>/report.md and its figures.
 """
@@ -11,6 +11,8 @@ import logging
 import shutil
 
 import numpy as np
+
+from solvers.constants import SQUEAL_LEVEL_DB
 
 from . import artifacts, paths
 from .config import load
@@ -36,7 +38,7 @@ def wheel_section(wheel: str, figdir) -> str:
     axial0 = flex & (a["cls"] == "a") & (a["m"] == 0)
     return f"""## Wheel `{wheel}`
 
-Parameters: `{src}` (hash {prov['config_hash']}); model: {p['mount']['type']} mount, harmonics n = 0..{p['modes']['n_max']},
+Parameters: `{paths.shown(src)}` (hash {prov['config_hash']}); model: {p['mount']['type']} mount, harmonics n = 0..{p['modes']['n_max']},
 modes below {p['modes']['f_max']:.0f} Hz: {int(flex.sum())} flexible and {int((~flex).sum())} rigid half-wheelset modes.
 The squeal candidates, axial modes with no nodal circle (n, 0, a): {', '.join(f'{f:.0f} Hz (n={n})' for f, n in zip(a['f_hz'][axial0], a['n'][axial0]))}.
 
@@ -59,7 +61,7 @@ def rail_section(rail: str, figdir) -> str:
     pts = ", ".join(f"{1e3 * y:+.0f} mm" for y in a["point_y_m"])
     return f"""## Rail `{rail}`
 
-Parameters: `{src}` (hash {prov['config_hash']}). Section: {1e4 * float(a['section_area_m2']):.2f} cm^2,
+Parameters: `{paths.shown(src)}` (hash {prov['config_hash']}). Section: {1e4 * float(a['section_area_m2']):.2f} cm^2,
 {float(a['section_mass_per_m']):.2f} kg/m, I_vertical {1e8 * float(a['section_I_vertical_m4']):.0f} cm^4, I_lateral
 {1e8 * float(a['section_I_lateral_m4']):.0f} cm^4; pad {float(a['pad_k_vertical_n_per_m2']) / 1e6:.0f} MN/m^2 vertical.
 Receptances at the rail-head points {pts}; vertical point receptance at {f[i300]:.0f} Hz:
@@ -109,7 +111,7 @@ def simulate_section(case: str, figdir) -> str:
     a, _ = artifacts.load_npz(paths.case_dir(case) / "simulate.npz", "simulate", simulate_config(case)[-1],
                               make_target=f"simulate CASE={case}")
     shutil.copy2(paths.case_dir(case) / "simulate.png", figdir / f"{case}_simulate.png")
-    squeal = float(a["L_F2"]) >= 10.0
+    squeal = float(a["L_F2"]) >= SQUEAL_LEVEL_DB
     return f"""## Interaction
 
 {int(a['n_steps'])} time steps, stopped: {a['stop_reason']}. L_F2 = {float(a['L_F2']):.1f} dB re 1 N, dominant frequency of F2
@@ -191,11 +193,11 @@ the limit cycle in the file is {float(a['wav_L_p']):.1f} dB at {float(a['wav_f_p
 def run_report(case: str) -> str:
     cpath = paths.case_file(case)
     c = load(cpath, CASE)
-    out = paths.BUILD / "report" / case
+    out = paths.build() / "report" / case
     figdir = out / "figures"
     figdir.mkdir(parents=True, exist_ok=True)
     sections = [f"# Curve squeal report: case `{case}`\n\n{c['description']}\n\n"
-                f"Case file `{cpath}`: wheel `{c['wheel']}`, rail `{c['rail']}`, dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm, "
+                f"Case file `{paths.shown(cpath)}`: wheel `{c['wheel']}`, rail `{c['rail']}`, dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm, "
                 f"mu = {c['friction']['mu']}, gamma_y = {c['kinematics']['gamma_y']}, v = {3.6 * c['kinematics']['speed']:.0f} km/h.\n",
                 wheel_section(c["wheel"], figdir), rail_section(c["rail"], figdir)]
     from .contact_stage import contact_inputs
@@ -205,7 +207,7 @@ def run_report(case: str) -> str:
     sections.append(simulate_section(case, figdir))
     sections.append(radiate_section(case, figdir))
     sections.append(listen_section(case, figdir))
-    from .study_report import studies_section
+    from .study.report import studies_section
 
     sections.append(studies_section(figdir))
     text = "\n".join(sections)

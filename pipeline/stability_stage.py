@@ -17,6 +17,7 @@ import time
 import numpy as np
 
 from . import artifacts, paths
+from .atomic import save_figure
 
 log = logging.getLogger("pipeline.stability")
 
@@ -73,27 +74,7 @@ def run_stability(case: str) -> dict:
 
 
 def plot_screen(a: dict, path, case: str, c: dict) -> None:
-    import matplotlib
+    """``postprocess.plots.stability.screen_figure``, saved atomically to ``path``."""
+    from postprocess.plots.stability import screen_figure
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(8, 4.5))
-    f, s, lab = a["f_hz"], a["sigma"], a["label"]
-    un = s > 0
-    ax.semilogx(f[~un], s[~un], "o", color="0.6", ms=4, label="stable")
-    ax.semilogx(f[un], s[un], "o", color="C3", ms=6, label="unstable")
-    for fi, si, li in zip(f[un], s[un], lab[un]):
-        ax.annotate(li, (fi, si), textcoords="offset points", xytext=(4, 4), fontsize=8)
-    ax.axhline(0, color="k", lw=0.6)
-    ax.set_xlabel("frequency (Hz)")
-    ax.set_ylabel("growth rate sigma (1/s)")
-    ax.set_ylim(max(-30.0, float(s.min()) - 1) if len(s) else -30, max(5.0, 1.15 * float(s.max())) if len(s) else 5)
-    ax.set_title(f"{case}: dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm, mu = {c['friction']['mu']}, "
-                 f"gamma_y = {c['kinematics']['gamma_y']}")
-    ax.legend(fontsize=8)
-    ax.grid(alpha=0.3, which="both")
-    fig.tight_layout()
-    with artifacts.atomic_write(path) as tmp:
-        fig.savefig(tmp, dpi=100)
-    plt.close(fig)
+    save_figure(screen_figure(a, case, c), path, dpi=100)

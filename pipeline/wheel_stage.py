@@ -30,7 +30,7 @@ def load_wheel(name: str) -> tuple[dict, str]:
     from geometry.wheel import wheel_segments
 
     path = paths.wheel_file(name)
-    return load_geometry(path, WHEEL, wheel_segments, "wheel", paths.available(paths.WHEELS)), str(path)
+    return load_geometry(path, WHEEL, wheel_segments, "wheel", paths.available(paths.wheels())), str(path)
 
 
 def run_mesh(name: str) -> None:
@@ -146,7 +146,7 @@ def modal_model(p: dict, results, pts, cells) -> dict:
 
 
 def run_modes(name: str, workers: int | None = None) -> dict:
-    from tqdm import tqdm
+    from .progress import progress
 
     p, _ = load_wheel(name)
     out = paths.wheel_dir(name)
@@ -154,7 +154,7 @@ def run_modes(name: str, workers: int | None = None) -> dict:
     names = meta["physical_curves"]
     t0 = time.perf_counter()
     n_h = p["modes"]["n_max"] + 1
-    with tqdm(total=n_h, desc=f"modes {name}", unit="harmonic", disable=None) as bar:
+    with progress(total=n_h, desc=f"modes {name}", unit="harmonic") as bar:
         results, pts, cells = solve_all(p, names, str(out / "section.msh"), workers, bar.update)
     model = modal_model(p, results, pts, cells)
     model["boundary_names"] = np.array(list(names))
@@ -189,9 +189,11 @@ def _boundary_nodes(pts, cells, msh, tag) -> np.ndarray:
 
 def run_shapes(name: str) -> None:
     """One PNG per mode (3D wheel, swept section) and a gallery."""
-    from tqdm import tqdm
+    from postprocess.mode_geometry import boundary_edges_from_triangles
+    from postprocess.mode_shapes import gallery_figure, render_mode
 
-    from postprocess.mode_shapes import boundary_edges_from_triangles, render_gallery, render_mode
+    from .atomic import save_figure, save_image
+    from .progress import progress
 
     p, _ = load_wheel(name)
     out = paths.wheel_dir(name)
@@ -200,13 +202,14 @@ def run_shapes(name: str) -> None:
     folder = out / "shapes"
     folder.mkdir(parents=True, exist_ok=True)
     images, labels = [], []
-    for i in tqdm(range(len(a["f_hz"])), desc=f"shapes {name}", unit="mode", disable=None):
+    for i in progress(range(len(a["f_hz"])), desc=f"shapes {name}", unit="mode"):
         lab = f"({a['n'][i]}, {a['m'][i]}, {a['cls'][i]})" if a["kind"][i] == "flexible" else str(a["kind"][i])
         path = folder / f"mode_{i:03d}_n{a['n'][i]}_{a['kind'][i]}.png"
-        render_mode(str(path), a["points"], edges, a["shapes"][i], int(a["n"][i]), lab, float(a["f_hz"][i]))
-        images.append(str(path))
+        image = render_mode(a["points"], edges, a["shapes"][i], int(a["n"][i]), lab, float(a["f_hz"][i]))
+        save_image(image, path)
+        images.append(np.divide(image, 255, dtype=np.float32))  # as matplotlib reads the PNG back
         labels.append(f"{lab} {a['f_hz'][i]:.1f} Hz")
-    render_gallery(str(folder / "gallery.png"), images, labels, ncols=5)
+    save_figure(gallery_figure(images, labels, ncols=5), folder / "gallery.png", format="png", facecolor="white")
     log.info("shapes %s: %d renders -> %s", name, len(images), folder)
 
 

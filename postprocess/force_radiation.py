@@ -4,10 +4,11 @@
 Pure functions on arrays (no file or configuration I/O); the pipeline's
 ``radiate`` stage loads the artifacts and calls these.
 
-Fast form of [4.38] (the same physics as ``radiation.sound_power``)
--------------------------------------------------------------------
+Fast form of [4.38] (the node averages of [4.54]-[4.57] as Gram matrices)
+-------------------------------------------------------------------------
 For harmonic n with modes r (participations q_r(f) = i W H_r(f) (Phi_r2 F2 +
-Phi_r3 F3), H_r = 1 / (m_r (w_r^2 - W^2 + 2 i zeta_r w_r W)) [4.10]) the node
+Phi_r3 F3), H_r = 1 / (m_r (w_r^2 - W^2 + 2 i zeta_r w_r W)) [4.10],
+``solvers.receptance.modal_frf``) the node
 mean square of a surface is <v^2> = circ q^H (U^T U / N_nodes) q, circ = 1
 (n = 0) or 1/2 (n > 0) [4.56].  The Gram matrices are summed with the areas
 once per wheel, A_n = sum_q S_aq U_aq^T U_aq / N_aq (axial velocity U_z on the
@@ -52,8 +53,12 @@ from typing import Mapping
 
 import numpy as np
 
+from solvers.constants import F_MAX_HZ
+from solvers.receptance import modal_frf
+
 from . import radiation as R
-from .spectra import amplitude_spectrum, dominant_frequency
+from .radiation_surfaces import SurfaceNodes, Surfaces
+from .spectra import amplitude_spectrum, dominant_frequency, window_samples
 
 PROMINENCE_DB = 20.0  # a tone's peak bin above the median of the bins 4..16 away (dB)
 MAX_SERIES = 3        # harmonic series (fundamentals) fitted at most
@@ -93,7 +98,7 @@ class RadiationModel:
     rho: float = R.RHO_AIR
     c0: float = R.C0
     f_min: float = 20.0
-    f_max: float = 6500.0
+    f_max: float = F_MAX_HZ
     meta: dict = field(default_factory=dict)
 
     def with_damping(self, zeta) -> "RadiationModel":
@@ -107,8 +112,8 @@ class RadiationModel:
         return f"({int(self.n[i])},{int(self.m[i])},{self.cls[i]})"
 
 
-def build_model(modes: Mapping, surfaces: R.Surfaces, nodes: R.SurfaceNodes, phi, zeta, *,
-                rho: float = R.RHO_AIR, c0: float = R.C0, f_min: float = 20.0, f_max: float = 6500.0,
+def build_model(modes: Mapping, surfaces: Surfaces, nodes: SurfaceNodes, phi, zeta, *,
+                rho: float = R.RHO_AIR, c0: float = R.C0, f_min: float = 20.0, f_max: float = F_MAX_HZ,
                 meta: dict | None = None) -> RadiationModel:
     """``modes``: f_hz, n, modal_mass, shapes (M, nodes, 3) = (U_r, U_z, U_phi)
     (and m, cls for labels; the wheel modal artifact works as is); ``phi`` (M, 2)
@@ -151,8 +156,7 @@ def harmonic_power(model: RadiationModel, f, F2, F3) -> np.ndarray:
     W = 2 * np.pi * f
     out = np.zeros((model.harmonics.size, f.size))
     for h, (nn, idx) in enumerate(zip(model.harmonics, model.groups)):
-        wr = 2 * np.pi * model.f_r[idx][:, None]
-        H = 1.0 / (model.modal_mass[idx][:, None] * (wr**2 - W**2 + 2j * model.zeta[idx][:, None] * wr * W))
+        H = modal_frf(f, model.f_r[idx], model.modal_mass[idx], model.zeta[idx]).T  # [4.10]
         q = (1j * W) * H * (model.phi[idx, 0][:, None] * F2 + model.phi[idx, 1][:, None] * F3)  # [4.54]
         va = np.einsum("kf,kf->f", q.conj(), model.A[h] @ q).real  # sum_q S_aq <|v_aq|^2>
         vr = np.einsum("kf,kf->f", q.conj(), model.B[h] @ q).real  # S_r <|v_r|^2>
@@ -166,11 +170,6 @@ def harmonic_power(model: RadiationModel, f, F2, F3) -> np.ndarray:
 # --------------------------------------------------------------------------
 # force histories -> tones + residual spectrum
 # --------------------------------------------------------------------------
-def hann(N: int) -> np.ndarray:
-    """Periodic Hann window (as ``spectra.amplitude_spectrum``)."""
-    return 0.5 - 0.5 * np.cos(2 * np.pi * np.arange(N) / N)
-
-
 @dataclass
 class ForceDecomposition:
     """``tone_f`` (T,) Hz, ``tone_F2``/``tone_F3`` complex RMS amplitudes (N);
@@ -200,7 +199,7 @@ def refine_frequency(x, dt: float, f_est: float, half_width: float, steps: int =
     f_est: parabolas through log|DTFT| at f - h, f, f + h (vertex clipped to +- h), h from
     half_width shrinking 4-fold per step (the main lobe is smooth and unimodal)."""
     x = np.asarray(x, float)
-    wx = hann(x.size) * (x - x.mean())
+    wx = window_samples("hann", x.size) * (x - x.mean())
     t = np.arange(x.size) * dt
 
     def g(f):
@@ -235,7 +234,7 @@ def _fit_tones(X, w, t, freqs):
     return amp, D @ c
 
 
-def decompose_forces(F2, F3, dt: float, *, f_min: float = 20.0, f_max: float = 6500.0,
+def decompose_forces(F2, F3, dt: float, *, f_min: float = 20.0, f_max: float = F_MAX_HZ,
                      prominence_db: float = PROMINENCE_DB) -> ForceDecomposition:
     """Split the (mean-removed) histories F2, F3 into tones and a residual (module docstring)."""
     X = np.column_stack([np.asarray(F2, float), np.asarray(F3, float)])
@@ -243,7 +242,7 @@ def decompose_forces(F2, F3, dt: float, *, f_min: float = 20.0, f_max: float = 6
     N = X.shape[0]
     if N < 16:
         raise ValueError(f"need at least 16 samples of the forces, got {N}")
-    w = hann(N)
+    w = window_samples("hann", N)
     t = np.arange(N) * dt
     df = 1.0 / (N * dt)
     top = min(f_max, 0.5 / dt - 2 * df)

@@ -155,11 +155,18 @@ def contact_shape(shapes: np.ndarray, where) -> np.ndarray:
 # ----------------------------------------------------------------------------------------------
 
 def modal_damping(n, m, cls, kind, zeta_suspension, overrides: dict | None = None) -> np.ndarray:
-    """Modal damping ratios [4.11]: flexible modes 1e-3 (n = 0), 1e-2 (n = 1),
-    1e-4 (n >= 2); the (1, 0, r) mode 1.0 (axle damping, Thompson); the rigid
-    half-wheelset modes (kind != 'flexible') their suspension damping ratio
-    ``zeta_suspension``.  ``overrides``: {mode index: zeta} applied last (damping
-    study, single-mode validation)."""
+    """Modal damping ratios [4.11], the one definition of the rule (the Green's
+    functions, the radiation and the studies use it).
+
+    Flexible modes: 1e-3 (n = 0), 1e-2 (n = 1), 1e-4 (n >= 2), the free wheel's
+    values; the (1, 0, r) mode -- one nodal diameter and *no* nodal circle --
+    1.0, because the axle damps it (thesis 4.2.1 after Thompson); an n = 1
+    radial mode with nodal circles keeps 1e-2.  The rigid half-wheelset modes
+    (kind != 'flexible': bounce, roll, lateral on the primary suspension) are not
+    free-wheel modes: they take the suspension's damping ratio
+    ``zeta_suspension`` (from the suspension's c and k), and a rigid mode without
+    a finite one is an error.  ``overrides``: {mode index: zeta} applied last
+    (damping study, single-mode validation)."""
     n = np.asarray(n)
     m = np.asarray(m)
     cls = np.asarray(cls).astype(str)

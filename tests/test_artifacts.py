@@ -17,13 +17,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pipeline import artifacts
+from pipeline import provenance as provenance_module
 from pipeline.artifacts import (
     PROVENANCE_KEY,
     ArtifactError,
     atomic_write,
-    git_revision,
-    library_versions,
     load_json,
     load_npz,
     provenance,
@@ -31,6 +29,7 @@ from pipeline.artifacts import (
     save_json,
     save_npz,
 )
+from pipeline.provenance import git_revision, library_versions
 from pipeline.config import config_hash
 
 REPO_ROOT = Path(__file__).resolve().parent.parent
@@ -125,7 +124,8 @@ _WRITER = textwrap.dedent(
     import sys
     import numpy as np
     import pipeline.artifacts as artifacts
-    artifacts.library_versions = lambda: {}
+    import pipeline.provenance as provenance
+    provenance.library_versions = lambda: {}
     data = np.random.default_rng(0).random(8_000_000)
     artifacts.save_npz(sys.argv[1], "big", {"n": 1}, data=data)
     print("finished")
@@ -431,7 +431,7 @@ def test_git_unavailable_gives_unknown(tmp_path, monkeypatch):
 
 
 def test_not_a_git_checkout_gives_unknown(tmp_path, monkeypatch):
-    monkeypatch.setattr(artifacts, "_REPO_ROOT", tmp_path)
+    monkeypatch.setattr(provenance_module, "_REPO_ROOT", tmp_path)
     monkeypatch.setenv("GIT_CEILING_DIRECTORIES", str(tmp_path.parent))
     assert git_revision() == "unknown"
 

@@ -1,4 +1,5 @@
-"""Tests for postprocess.mode_shapes (geometry, displacement mapping, PNG output)."""
+"""Tests for postprocess.mode_geometry and postprocess.mode_shapes (geometry,
+displacement mapping, rendered images saved through pipeline.atomic)."""
 
 import os
 
@@ -8,6 +9,8 @@ import matplotlib.image as mpimg  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
+from pipeline.atomic import save_figure, save_image  # noqa: E402
+from postprocess import mode_geometry as mg  # noqa: E402
 from postprocess import mode_shapes as ms  # noqa: E402
 
 RI, RO, H = 0.1, 0.4, 0.02
@@ -53,7 +56,7 @@ def perimeter_edges(nr=NR, nz=NZ):
 @pytest.mark.parametrize("quadratic", [False, True])
 def test_boundary_edges_are_exactly_the_perimeter(quadratic):
     pts, tris = annulus_section(quadratic=quadratic)
-    edges = ms.boundary_edges_from_triangles(tris)
+    edges = mg.boundary_edges_from_triangles(tris)
     assert edges.shape == (2 * (NR - 1) + 2 * (NZ - 1), 2)
     got = {tuple(sorted(map(int, e))) for e in edges}
     assert len(got) == len(edges)  # no duplicates
@@ -63,7 +66,7 @@ def test_boundary_edges_are_exactly_the_perimeter(quadratic):
 def test_boundary_edges_keep_triangle_orientation():
     # CCW triangles -> boundary traversed CCW: signed area (shoelace) > 0
     pts, tris = annulus_section()
-    edges = ms.boundary_edges_from_triangles(tris)
+    edges = mg.boundary_edges_from_triangles(tris)
     p, q = pts[edges[:, 0]], pts[edges[:, 1]]
     signed_area = 0.5 * np.sum(p[:, 0] * q[:, 1] - q[:, 0] * p[:, 1])
     assert signed_area == pytest.approx((RO - RI) * H, rel=1e-12)
@@ -76,8 +79,8 @@ def test_boundary_edges_keep_triangle_orientation():
 
 def test_sweep_area_matches_annular_disc():
     pts, tris = annulus_section()
-    edges = ms.boundary_edges_from_triangles(tris)
-    surf = ms.sweep_surface(pts, edges, n_phi=120)
+    edges = mg.boundary_edges_from_triangles(tris)
+    surf = mg.sweep_surface(pts, edges, n_phi=120)
     area = surf.mesh.compute_cell_sizes(length=False, volume=False)["Area"].sum()
     exact = 2 * np.pi * (RO**2 - RI**2) + 2 * np.pi * (RO + RI) * H
     assert abs(area - exact) / exact < 0.01
@@ -99,8 +102,8 @@ def test_sweep_area_matches_annular_disc():
 def test_sweep_solid_disc_drops_axis_edges():
     # r starts at 0: the edges on the axis must not create degenerate cells
     pts, tris = annulus_section(ri=0.0)
-    edges = ms.boundary_edges_from_triangles(tris)
-    surf = ms.sweep_surface(pts, edges, n_phi=120)
+    edges = mg.boundary_edges_from_triangles(tris)
+    surf = mg.sweep_surface(pts, edges, n_phi=120)
     sizes = surf.mesh.compute_cell_sizes(length=False, volume=False)["Area"]
     assert sizes.min() > 0.0
     assert surf.mesh.n_cells == 120 * (len(edges) - (NZ - 1))
@@ -116,8 +119,8 @@ def test_sweep_solid_disc_drops_axis_edges():
 @pytest.fixture(scope="module")
 def disc_surface():
     pts, tris = annulus_section()
-    edges = ms.boundary_edges_from_triangles(tris)
-    return pts, edges, ms.sweep_surface(pts, edges, n_phi=120)
+    edges = mg.boundary_edges_from_triangles(tris)
+    return pts, edges, mg.sweep_surface(pts, edges, n_phi=120)
 
 
 def test_displaced_axial_n2(disc_surface):
@@ -125,7 +128,7 @@ def test_displaced_axial_n2(disc_surface):
     U = np.zeros((len(pts), 3))
     U[:, 1] = 1.0
     scale = 0.01
-    new = ms.displaced(surf, U, 2, scale)
+    new = mg.displaced(surf, U, 2, scale)
     old = np.asarray(surf.mesh.points)
     d = new - old
     np.testing.assert_allclose(d[:, :2], 0.0, atol=1e-15)  # x, y unchanged
@@ -143,7 +146,7 @@ def test_displaced_n1_is_rigid_translation(disc_surface):
     U[:, 0] = 1.0
     U[:, 2] = -1.0
     scale = 0.02
-    d = ms.displaced(surf, U, 1, scale) - np.asarray(surf.mesh.points)
+    d = mg.displaced(surf, U, 1, scale) - np.asarray(surf.mesh.points)
     np.testing.assert_allclose(d, np.tile([scale, 0.0, 0.0], (len(d), 1)), atol=1e-14)
 
 
@@ -152,7 +155,7 @@ def test_displaced_n0_torsion_is_tangential(disc_surface):
     U = np.zeros((len(pts), 3))
     U[:, 2] = 3.0  # arbitrary amplitude: normalised away
     scale = 0.005
-    d = ms.displaced(surf, U, 0, scale) - np.asarray(surf.mesh.points)
+    d = mg.displaced(surf, U, 0, scale) - np.asarray(surf.mesh.points)
     np.testing.assert_allclose(np.linalg.norm(d, axis=1), scale, rtol=1e-12)
     radial = np.column_stack([np.cos(surf.phi), np.sin(surf.phi), np.zeros_like(surf.phi)])
     np.testing.assert_allclose(np.sum(d * radial, axis=1), 0.0, atol=1e-15)
@@ -163,7 +166,7 @@ def test_displaced_normalises_largest_displacement(disc_surface):
     pts, _, surf = disc_surface
     rng = np.random.default_rng(0)
     U = rng.normal(size=(len(pts), 3)) * 7.0
-    d = ms.displaced(surf, U, 3, 0.03) - np.asarray(surf.mesh.points)
+    d = mg.displaced(surf, U, 3, 0.03) - np.asarray(surf.mesh.points)
     assert np.linalg.norm(d, axis=1).max() == pytest.approx(0.03, rel=1e-12)
 
 
@@ -180,24 +183,25 @@ def _rgb(path):
 
 def test_render_mode_and_gallery(tmp_path):
     pts, tris = annulus_section()
-    edges = ms.boundary_edges_from_triangles(tris)
+    edges = mg.boundary_edges_from_triangles(tris)
     U = np.zeros((len(pts), 3))
     U[:, 1] = (pts[:, 0] - RI) / (RO - RI)  # axial, growing with radius
-    paths = []
+    images = []
     for n, label in [(2, "(2, 0, a)"), (0, "(0, 0, t)")]:
         Un = U if n else np.column_stack([0 * U[:, 0], 0 * U[:, 0], pts[:, 0]])
         out = tmp_path / f"mode_n{n}.png"
-        ret = ms.render_mode(out, pts, edges, Un, n, label, 1143.2, window_size=(400, 300))
-        assert os.fspath(ret) == os.fspath(out)
+        image = ms.render_mode(pts, edges, Un, n, label, 1143.2, window_size=(400, 300))
+        assert image.shape[:2] == (300, 400) and image.dtype == np.uint8
+        save_image(image, out)
         img = _rgb(out)
-        assert img.shape[:2] == (300, 400)
+        np.testing.assert_array_equal(np.round(img * 255).astype(np.uint8), image[..., :3])  # PNG is lossless
         assert img.std() > 0.05  # not blank
         chroma = img.max(axis=2) - img.min(axis=2)
         assert (chroma > 0.25).mean() > 0.02  # coloured (non-grey) pixels
-        paths.append(out)
+        images.append(image)
 
     gal = tmp_path / "gallery.png"
-    ms.render_gallery(gal, paths, ["(2, 0, a)", "(0, 0, t)"], ncols=4)
+    save_figure(ms.gallery_figure(images, ["(2, 0, a)", "(0, 0, t)"], ncols=4), gal, format="png", facecolor="white")
     g = _rgb(gal)
     assert g.ndim == 3 and g.shape[1] > g.shape[0]  # two tiles side by side
     assert g.std() > 0.05
@@ -210,7 +214,8 @@ def test_render_mode_and_gallery(tmp_path):
     ]
 
 
-def test_render_gallery_rejects_mismatched_labels(tmp_path):
+def test_gallery_rejects_mismatched_labels():
     with pytest.raises(ValueError):
-        ms.render_gallery(tmp_path / "g.png", [tmp_path / "a.png"], [], ncols=2)
-    assert list(tmp_path.iterdir()) == []
+        ms.gallery_figure([np.zeros((4, 4, 3), np.uint8)], [], ncols=2)
+    with pytest.raises(ValueError):
+        ms.gallery_figure([], [], ncols=2)

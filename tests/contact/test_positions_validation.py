@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from pipeline.atomic import save_text
 
 pytestmark = pytest.mark.validation
 DOCS = Path(__file__).resolve().parents[2] / "docs" / "validation"

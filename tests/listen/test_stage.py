@@ -61,7 +61,7 @@ def build(tmp_path_factory):
 def squeal(build):
     """The synthetic squeal built once: simulate.npz -> radiate -> listen (with its plot)."""
     mp = pytest.MonkeyPatch()
-    mp.setattr(paths, "BUILD", build)
+    mp.setenv("SQUEAL_BUILD_DIR", str(build))
     mp.setattr(artifacts, "load_npz", _cached_load_npz)
     mp.setattr(RS, "plot_radiation", no_plot)
     try:
@@ -77,7 +77,7 @@ def squeal(build):
 
 @pytest.fixture
 def tmp_build(build, monkeypatch):
-    monkeypatch.setattr(paths, "BUILD", build)
+    monkeypatch.setenv("SQUEAL_BUILD_DIR", str(build))
     monkeypatch.setattr(artifacts, "load_npz", _cached_load_npz)
     return build
 
@@ -154,7 +154,7 @@ def _cases_with(tmp_path, monkeypatch, table: str):
     cases = tmp_path / "cases"
     cases.mkdir()
     (cases / "default.toml").write_text(DEFAULT + "\n[listener]\n" + table + "\n")
-    monkeypatch.setattr(paths, "CASES", cases)
+    monkeypatch.setenv("SQUEAL_CASE_DIR", str(cases))
     return cases / "default.toml"
 
 
@@ -206,7 +206,7 @@ def test_stale_listening_is_reported_not_shown(squeal, tmp_build, tmp_path, monk
     cases = tmp_path / "cases"
     cases.mkdir()
     (cases / "default.toml").write_text(DEFAULT.replace("mu = 0.35", "mu = 0.30"))
-    monkeypatch.setattr(paths, "CASES", cases)
+    monkeypatch.setenv("SQUEAL_CASE_DIR", str(cases))
     with pytest.raises(artifacts.ArtifactError, match=r"listen\.npz: stale artifact.*make listen CASE=default"):
         LS.load_listening("default")
     from pipeline.report import listen_section

@@ -10,6 +10,9 @@ import pytest
 from geometry.wheel import surface_radii, wheel_segments
 from postprocess import radiation as R
 from solvers.constants import thesis_contact_point
+from postprocess import radiation_surfaces as SF
+from tests.radiation import node_average as NA
+from solvers.receptance import modal_damping
 
 ART = Path(__file__).resolve().parents[2] / "build" / "wheels" / "c20" / "modes.npz"
 Y_DEFAULT = thesis_contact_point(-0.015)[0]  # the default case's y^W (m)
@@ -21,10 +24,10 @@ def load_c20(path=ART):
     y^W = +32 mm: thesis [4.1] field-positive, solvers.constants)."""
     d = dict(np.load(path, allow_pickle=False))
     p = json.loads(str(d["__provenance__"]))["config"]  # the resolved configuration the artifact was built from
-    s = R.radiation_surfaces(surface_radii(p), wheel_segments(p))
+    s = SF.radiation_surfaces(surface_radii(p), wheel_segments(p))
     bnd = {k[len("boundary_"):]: d[k] for k in d if k.startswith("boundary_")}
-    nodes = R.surface_nodes(d["points"], bnd, s)
-    c = R.contact_node(d["points"], bnd, Y_DEFAULT, p["axle"]["rolling_circle_z"])
+    nodes = SF.surface_nodes(d["points"], bnd, s)
+    c = NA.contact_node(d["points"], bnd, Y_DEFAULT, p["axle"]["rolling_circle_z"])
     return d, p, s, nodes, c
 
 
@@ -56,9 +59,9 @@ def test_contact_node(c20):
 
 def test_unit_lateral_force(c20):
     d, p, s, nodes, c = c20
-    zeta = R.modal_damping(d["n"], d["cls"], d["kind"], d["zeta_suspension"])
+    zeta = modal_damping(d["n"], d["m"], d["cls"], d["kind"], d["zeta_suspension"])
     f = R.frequency_grid(100.0, 6500.0, d["f_hz"], zeta, per_decade=200, per_peak=21)
-    u = R.unit_force_power(f, d, s, nodes, c, "lateral")
+    u = NA.unit_force_power(f, d, s, nodes, c, "lateral")
     res = u.result
     assert np.all(np.isfinite(res.W)) and np.all(res.W >= 0)
     np.testing.assert_allclose(res.W, res.W_n.sum(axis=0), rtol=1e-12)
@@ -68,7 +71,7 @@ def test_unit_lateral_force(c20):
     assert d["cls"][k] == "a" and d["m"][k] == 0 and d["n"][k] >= 2
     assert sum(r["share"] for r in u.table) == pytest.approx(1.0)
     # the rigid half-wheelset modes matter only at low frequency
-    flex = R.unit_force_power(f, d, s, nodes, c, "lateral", rigid=False)
+    flex = NA.unit_force_power(f, d, s, nodes, c, "lateral", rigid=False)
     hi = f > 1000
     assert np.max(np.abs(R.level_db(flex.result.W[hi]) - R.level_db(res.W[hi]))) < 0.5
     assert abs(flex.L_band - u.L_band) < 0.05

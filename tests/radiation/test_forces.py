@@ -14,7 +14,8 @@ import numpy as np
 import pytest
 
 from pipeline.radiate_stage import sound_power_of_forces
-from postprocess import radiation as R
+from postprocess import radiation_surfaces as SF
+from tests.radiation import node_average as NA
 from postprocess.force_radiation import build_model, decompose_forces, harmonic_power, power_of_forces
 from tests.radiation.test_power import BND, PTS, SHAPE
 from tests.radiation.test_surfaces import RADII, flat_disc_segments
@@ -47,8 +48,8 @@ def sigma_by_hand(n, f):
 def one_mode_model(n, f_r, m_r, zeta):
     modes = {"f_hz": np.array([f_r]), "n": np.array([n]), "m": np.array([0]), "cls": np.array(["a"]),
              "modal_mass": np.array([m_r]), "shapes": SHAPE[None].copy()}
-    s = R.radiation_surfaces(RADII, flat_disc_segments())
-    nodes = R.surface_nodes(PTS, BND, s)
+    s = SF.radiation_surfaces(RADII, flat_disc_segments())
+    nodes = SF.surface_nodes(PTS, BND, s)
     phi = np.array([[SHAPE[0, 1], SHAPE[0, 0]]])  # contact at node 0: (U_z, U_r)
     return build_model(modes, s, nodes, phi, [zeta]), modes
 
@@ -165,8 +166,8 @@ def test_broadband_force_is_the_library_on_bins():
     modes = {"f_hz": np.array([700.0, 1300.0, 2100.0]), "n": np.array([2, 2, 3]), "m": np.array([0, 1, 0]),
              "cls": np.array(["a", "a", "a"]), "kind": np.array(["flexible"] * 3), "modal_mass": np.array([20.0, 9.0, 12.0]),
              "shapes": np.stack([SHAPE, SHAPE[:, [1, 0, 2]], 0.5 * SHAPE]), "zeta_suspension": np.full(3, np.nan)}
-    s = R.radiation_surfaces(RADII, flat_disc_segments())
-    nodes = R.surface_nodes(PTS, BND, s)
+    s = SF.radiation_surfaces(RADII, flat_disc_segments())
+    nodes = SF.surface_nodes(PTS, BND, s)
     zeta = np.array([1e-3, 2e-3, 1e-3])
     phi = modes["shapes"][:, 0, [1, 0]]
     model = build_model(modes, s, nodes, phi, zeta)
@@ -174,7 +175,7 @@ def test_broadband_force_is_the_library_on_bins():
     res = power_of_forces(model, F[:, 1], F[:, 2], DT)
     d = res["decomposition"]
     assert d.tone_f.size == 0 and not res["is_tone"].any()
-    ref = R.sound_power(d.f, d.R2, d.R3, modes, s, nodes, contact=0, zeta=zeta)
+    ref = NA.sound_power(d.f, d.R2, d.R3, modes, s, nodes, contact=0, zeta=zeta)
     np.testing.assert_allclose(res["W"], ref.W, rtol=1e-9)
     assert res["L_W"] == pytest.approx(ref.L_W, abs=1e-9)
 

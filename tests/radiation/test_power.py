@@ -4,9 +4,10 @@ harmonic separation, the mean-square factors and the band integral."""
 import numpy as np
 import pytest
 
-from postprocess.radiation import (C0, RHO_AIR, frequency_grid, modal_damping, radiation_surfaces, sigma_axial,
-                                   sigma_radial, sound_power, surface_nodes, transfer_receptance,
-                                   unit_force_power)
+from postprocess.radiation import C0, RHO_AIR, frequency_grid, sigma_axial, sigma_radial
+from postprocess.radiation_surfaces import radiation_surfaces, surface_nodes
+from solvers.receptance import modal_damping, modal_frf
+from tests.radiation.node_average import sound_power, unit_force_power
 from tests.radiation.test_surfaces import RADII, flat_disc_segments
 
 PI = np.pi
@@ -32,7 +33,7 @@ def setup(n=2, f_r=1000.0, m_r=20.0, zeta=1e-4, extra=None):
 
 def test_single_mode_at_resonance_lateral():
     modes, s, nodes, zeta = setup(zeta=1e-4)
-    assert modal_damping(modes["n"], modes["cls"], modes["kind"]) == pytest.approx(1e-4)
+    assert modal_damping(modes["n"], [0], modes["cls"], modes["kind"], modes["zeta_suspension"]) == pytest.approx(1e-4)
     f_r, m_r, w = 1000.0, 20.0, 2 * PI * 1000.0
     res = sound_power([f_r], 1.0, 0.0, modes, s, nodes, contact=0)
     # analytic SDOF response at resonance: v_i = i w U_i U_c F / (m i 2 zeta w^2) = U_i U_c F / (2 m zeta w)
@@ -52,7 +53,7 @@ def test_single_mode_at_resonance_lateral():
 def test_single_mode_vertical_force_and_n0_factor():
     modes, s, nodes, zeta = setup(n=0, zeta=None)
     f_r, m_r, w = 1000.0, 20.0, 2 * PI * 1000.0
-    z0 = modal_damping([0], ["a"])[0]
+    z0 = modal_damping([0], [0], ["a"], ["flexible"], [np.nan])[0]
     assert z0 == 1e-3
     res = sound_power([f_r], 0.0, 2.0, modes, s, nodes, contact=0)
     amp = 0.3 * 2.0 / (2 * m_r * z0 * w)  # U_c,r = 0.3, F3 = 2 N
@@ -76,23 +77,31 @@ def test_only_modes_of_the_same_harmonic():
     np.testing.assert_allclose(two.W_n, two.W_axial + two.W_radial, rtol=1e-12)
 
 
-def test_transfer_receptance_modal_sum():
+def test_modal_frf_modal_sum():
+    # [4.10] by hand: G_ij = sum_r U_ri U_rj / (m_r (w_r^2 - W^2 + 2 i zeta_r w_r W))
     U = np.array([[1.0, 0.5], [0.2, -1.0]])  # (modes, nodes)
     f = np.array([50.0, 300.0])
-    G = transfer_receptance(U, [1.0, 0.2], [100.0, 200.0], [2.0, 3.0], [0.01, 0.02], f)
+    H = modal_frf(f, [100.0, 200.0], [2.0, 3.0], [0.01, 0.02])  # (freqs, modes)
+    G = (H * np.array([1.0, 0.2])[None, :]) @ U  # driven at a point with U_c = (1.0, 0.2)
     w1, w2, W = 2 * PI * 100, 2 * PI * 200, 2 * PI * f
     h1 = 1 / (2.0 * (w1**2 - W**2 + 2j * 0.01 * w1 * W))
     h2 = 1 / (3.0 * (w2**2 - W**2 + 2j * 0.02 * w2 * W))
-    np.testing.assert_allclose(G[0], 1.0 * 1.0 * h1 + 0.2 * 0.2 * h2, rtol=1e-12)
-    np.testing.assert_allclose(G[1], 0.5 * 1.0 * h1 - 1.0 * 0.2 * h2, rtol=1e-12)
+    np.testing.assert_allclose(G[:, 0], 1.0 * 1.0 * h1 + 0.2 * 0.2 * h2, rtol=1e-12)
+    np.testing.assert_allclose(G[:, 1], 0.5 * 1.0 * h1 - 1.0 * 0.2 * h2, rtol=1e-12)
 
 
 def test_damping_rules():
-    n = [0, 1, 2, 5, 1, 1, 0]
-    cls = ["a", "a", "a", "r", "r", "s", "s"]
-    kind = ["flexible"] * 5 + ["bounce", "lateral"]
-    zs = [np.nan] * 5 + [0.2, 0.08]
-    np.testing.assert_allclose(modal_damping(n, cls, kind, zs), [1e-3, 1e-2, 1e-4, 1e-4, 1.0, 0.2, 0.08])
+    # [4.11] and thesis 4.2.1: only the (1,0,r) mode (one nodal diameter, NO nodal circle) is damped by
+    # the axle (zeta = 1); a (1,1,r) mode keeps the n = 1 value; the rigid half-wheelset modes take the
+    # suspension's damping ratio, and a rigid mode without one is an error, not a free-wheel value
+    n = [0, 1, 2, 5, 1, 1, 1, 0]
+    m = [0, 0, 0, 0, 0, 1, 0, 0]
+    cls = ["a", "a", "a", "r", "r", "r", "s", "s"]
+    kind = ["flexible"] * 6 + ["bounce", "lateral"]
+    zs = [np.nan] * 6 + [0.2, 0.08]
+    np.testing.assert_allclose(modal_damping(n, m, cls, kind, zs), [1e-3, 1e-2, 1e-4, 1e-4, 1.0, 1e-2, 0.2, 0.08])
+    with pytest.raises(ValueError, match="zeta_suspension"):
+        modal_damping(n, m, cls, kind, [np.nan] * 8)
 
 
 def test_unit_force_band_integral_single_mode():

@@ -11,7 +11,8 @@ import pytest
 
 from pipeline import artifacts, paths
 from pipeline import radiate_stage as RS
-from postprocess import radiation as R
+from solvers.constants import F_MAX_HZ
+from tests.radiation import node_average as NA
 
 ROOT = paths.ROOT
 REAL = ROOT / "build"
@@ -49,7 +50,7 @@ def _cached_load_npz(path, kind, config=None, **kw):
 
 @pytest.fixture
 def tmp_build(build, monkeypatch):
-    monkeypatch.setattr(paths, "BUILD", build)
+    monkeypatch.setenv("SQUEAL_BUILD_DIR", str(build))
     monkeypatch.setattr(artifacts, "load_npz", _cached_load_npz)
     return build
 
@@ -62,7 +63,7 @@ def no_plot(a, path, case):
 @pytest.fixture(scope="module")
 def model(build):
     mp = pytest.MonkeyPatch()
-    mp.setattr(paths, "BUILD", build)
+    mp.setenv("SQUEAL_BUILD_DIR", str(build))
     try:
         yield RS.load_radiation_model("default")
     finally:
@@ -103,7 +104,7 @@ def test_model_is_the_simulations_wheel(model):
 
     rng = np.random.default_rng(0)
     F2, F3 = rng.standard_normal(6) + 1j * rng.standard_normal(6), rng.standard_normal(6)
-    ref = R.sound_power(f, F2, F3, md, model.meta["surfaces"], model.meta["nodes"], md["shapes"].shape[1] - 1,
+    ref = NA.sound_power(f, F2, F3, md, model.meta["surfaces"], model.meta["nodes"], md["shapes"].shape[1] - 1,
                         zeta=model.zeta)
     np.testing.assert_allclose(harmonic_power(model, f, F2, F3), ref.W_n, rtol=1e-9, atol=1e-12 * ref.W.max())
     # contact point and damping as in the Green's functions stage (when that artifact is of this wheel)
@@ -147,7 +148,7 @@ def test_run_radiate_artifacts(tmp_build, model):
     k = int(np.argmax(npz["unit_W_lateral"]))
     j = int(np.argmin(np.abs(model.f_r - npz["unit_f"][k])))
     assert abs(model.f_r[j] - npz["unit_f"][k]) < 1e-6 * model.f_r[j] and model.cls[j] == "a" and model.m[j] == 0
-    assert np.all(npz["unit_W_radial"] > 0) and npz["unit_f"][0] == 100.0 and npz["unit_f"][-1] == RS.F_MAX
+    assert np.all(npz["unit_W_radial"] > 0) and npz["unit_f"][0] == 100.0 and npz["unit_f"][-1] == F_MAX_HZ
     assert a["L_W"] == npz["L_W"]
 
 
@@ -167,7 +168,7 @@ def test_stale_simulation_and_stale_radiate(tmp_build, model, tmp_path, monkeypa
     cases.mkdir()
     text = (ROOT / "pipeline" / "cases" / "default.toml").read_text()
     (cases / "default.toml").write_text(text.replace("mu = 0.35", "mu = 0.30"))
-    monkeypatch.setattr(paths, "CASES", cases)
+    monkeypatch.setenv("SQUEAL_CASE_DIR", str(cases))
     with pytest.raises(artifacts.ArtifactError, match=r"simulate\.npz: stale artifact.*friction\.mu.*make simulate"):
         RS.compute_radiation("default", model)
     with pytest.raises(artifacts.ArtifactError, match=r"radiate\.npz: stale"):

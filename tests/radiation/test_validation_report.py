@@ -16,6 +16,9 @@ import numpy as np
 import pytest
 
 from postprocess import radiation as R
+from postprocess import radiation_surfaces as SF
+from tests.radiation import node_average as NA
+from solvers.receptance import modal_damping
 from postprocess.spectra import amplitude_spectrum, dominant_frequency, force_level
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -102,7 +105,7 @@ def efficiency_plot(gamma: float, w: float, r: float = 0.39):
 def surfaces_section() -> list[str]:
     from tests.radiation.test_surfaces import RADII, flat_disc_segments
 
-    s = R.radiation_surfaces(RADII, flat_disc_segments())
+    s = SF.radiation_surfaces(RADII, flat_disc_segments())
     pi = np.pi
     hand = np.array([2 * pi * (0.1575**2 - 0.10**2), 2 * pi * (0.215**2 - 0.1575**2), 2 * pi * (0.2725**2 - 0.215**2),
                      2 * pi * (0.33**2 - 0.2725**2), 2 * pi * (0.40**2 - 0.33**2)])
@@ -129,9 +132,9 @@ def sdof_section() -> list[str]:
     out = []
     for n, F2, F3 in ((2, 1.0, 0.0), (0, 0.0, 2.0), (5, 1.0, 1.0)):
         modes, s, nodes, _ = setup(n=n, zeta=None)
-        z = R.modal_damping([n], ["a"])[0]
+        z = modal_damping([n], [0], ["a"], ["flexible"], [np.nan])[0]
         f_r, m_r, w = 1000.0, 20.0, 2 * np.pi * 1000.0
-        res = R.sound_power([f_r], F2, F3, modes, s, nodes, contact=0)
+        res = NA.sound_power([f_r], F2, F3, modes, s, nodes, contact=0)
         sh = modes["shapes"][0]
         q = (sh[0, 1] * F2 + sh[0, 0] * F3) / (2 * m_r * z * w)  # |v| per unit shape at resonance
         circ = 1.0 if n == 0 else 0.5
@@ -307,16 +310,16 @@ def c20_section() -> list[str]:
         return ["### C20: unit-force sound power", "", "(C20 modal artifact not built: `make modes`.)", ""]
     t0 = time.perf_counter()
     d, p, s, nodes, c = load_c20()
-    s_mean = R.radiation_surfaces({**_radii(p)}, web_thickness="mean")
-    zeta = R.modal_damping(d["n"], d["cls"], d["kind"], d["zeta_suspension"])
+    s_mean = SF.radiation_surfaces({**_radii(p)}, web_thickness="mean")
+    zeta = modal_damping(d["n"], d["m"], d["cls"], d["kind"], d["zeta_suspension"])
     f = R.frequency_grid(100.0, 6500.0, d["f_hz"], zeta)
-    lat = R.unit_force_power(f, d, s, nodes, c, "lateral")
-    rad = R.unit_force_power(f, d, s, nodes, c, "radial")
-    lat_flex = R.unit_force_power(f, d, s, nodes, c, "lateral", rigid=False)
-    rad_flex = R.unit_force_power(f, d, s, nodes, c, "radial", rigid=False)
-    lat_t = R.unit_force_power(f, d, s, nodes, c, "lateral", torsion=True, points=d["points"])
-    lat_mean = R.unit_force_power(f, d, s_mean, nodes, c, "lateral")
-    rad_mean = R.unit_force_power(f, d, s_mean, nodes, c, "radial")
+    lat = NA.unit_force_power(f, d, s, nodes, c, "lateral")
+    rad = NA.unit_force_power(f, d, s, nodes, c, "radial")
+    lat_flex = NA.unit_force_power(f, d, s, nodes, c, "lateral", rigid=False)
+    rad_flex = NA.unit_force_power(f, d, s, nodes, c, "radial", rigid=False)
+    lat_t = NA.unit_force_power(f, d, s, nodes, c, "lateral", torsion=True, points=d["points"])
+    lat_mean = NA.unit_force_power(f, d, s_mean, nodes, c, "lateral")
+    rad_mean = NA.unit_force_power(f, d, s_mean, nodes, c, "radial")
     t_run = time.perf_counter() - t0
     z_rc = p["axle"]["rolling_circle_z"]
     pc = d["points"][c]

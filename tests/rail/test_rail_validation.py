@@ -7,12 +7,12 @@ leaves the analytic beams by more than the tolerances the report states)
 """
 from __future__ import annotations
 
-from pipeline.artifacts import atomic_write
 import time
 from pathlib import Path
 
 import numpy as np
 import pytest
+from pipeline.atomic import save_text
 
 ROOT = Path(__file__).resolve().parents[2]
 DOCS = ROOT / "docs" / "validation"
@@ -24,8 +24,7 @@ LAB_COLORS = {"vertical bending": "C0", "lateral bending": "C1", "torsion": "C2"
 
 
 def _write(name: str, text: str) -> None:
-    with atomic_write(DOCS / name) as tmp:
-        tmp.write_text(text)
+    save_text(text, DOCS / name)
 
 
 def _db(G):

@@ -19,7 +19,7 @@ def _stage(*args: str) -> None:
 
 
 def ensure_case(case: str = "default") -> None:
-    if _ok(f"from pipeline.study_context import load_context; load_context({case!r}, radiation=False)"):
+    if _ok(f"from pipeline.study.context import load_context; load_context({case!r}, radiation=False)"):
         return
     if not _ok("from pipeline.artifacts import load_npz; from pipeline.rail_stage import load_rail_params; "
                "from pipeline.paths import rail_dir; "

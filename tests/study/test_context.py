@@ -1,6 +1,6 @@
 """pipeline/study_context.py: the code hash behind a study row's inputs ignores documentation
 (docstrings, comments) and follows the code."""
-from pipeline.study_context import _code_text
+from pipeline.study.context import _code_text
 
 
 def test_code_text_ignores_documentation_only(tmp_path):

@@ -35,7 +35,7 @@ def _rows():
 def test_reference_behaviour():
     from pipeline import artifacts, paths
     from pipeline.config import load
-    from pipeline.reference_behaviour import reference_table
+    from pipeline.study.reference import reference_table
     from pipeline.schemas import CASE
 
     name, rows = _rows()

@@ -5,7 +5,7 @@ import math
 import pytest
 
 from pipeline.artifacts import ArtifactError
-from pipeline.results_table import ResultsTable
+from pipeline.study.results_table import ResultsTable
 
 COLS = {"x": float, "n": int, "label": str}
 

@@ -10,7 +10,8 @@ import sys
 import numpy as np
 import pytest
 
-from pipeline import artifacts, paths, study_stage
+from pipeline import artifacts, paths
+from pipeline.study import stage as study_stage
 from pipeline.config import ConfigError, load
 from pipeline.schemas import CASE
 from tests.study.conftest import ROOT
@@ -31,7 +32,7 @@ def _csv(path):
 @pytest.fixture()
 def studies(tmp_path, monkeypatch, default_case):
     def make(name, text):
-        monkeypatch.setattr(study_stage, "STUDIES", _write(tmp_path, name, text))
+        monkeypatch.setenv("SQUEAL_STUDY_DIR", str(_write(tmp_path, name, text)))
         return tmp_path / f"out-{name}"
     return make
 

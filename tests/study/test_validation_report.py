@@ -40,7 +40,10 @@ VARIANTS = [  # (label, f_r Hz, modal mass kg, (Phi_2, Phi_3), mu)
 
 
 def map_vs_simulate() -> tuple[list, list]:
-    from pipeline import artifacts, paths, study_stage
+    import os
+
+    from pipeline import artifacts, paths
+    from pipeline.study import stage as study_stage
     from pipeline.config import load
     from pipeline.schemas import CASE
     from pipeline.simulate_stage import simulate_config
@@ -65,8 +68,15 @@ def map_vs_simulate() -> tuple[list, list]:
                 f'name = "one_{case}"\nkind = "map"\ncases = ["{case}"]\n[grid]\ngamma_y_first = {gy}\n'
                 f"gamma_y_last = {gy}\ngamma_y_step = 0.002\nmu_first = {mu}\nmu_last = {mu}\nmu_step = 0.05\n"
                 f"[quick]\ngamma_y_step = 0.002\nmu_step = 0.05\n[simulation]\nduration = {c['time']['duration']}\n")
-            study_stage.STUDIES = tmp
-            study_stage.run_study(f"one_{case}", workers=1, out=tmp / case, progress=False)
+            old = os.environ.get("SQUEAL_STUDY_DIR")
+            os.environ["SQUEAL_STUDY_DIR"] = str(tmp)  # this test's own study files
+            try:
+                study_stage.run_study(f"one_{case}", workers=1, out=tmp / case, progress=False)
+            finally:
+                if old is None:
+                    os.environ.pop("SQUEAL_STUDY_DIR")
+                else:
+                    os.environ["SQUEAL_STUDY_DIR"] = old
             with open(tmp / case / "map.csv", newline="") as fh:
                 (row,) = list(csv.DictReader(fh))
             s = sims[case]

@@ -32,8 +32,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pipeline.artifacts import atomic_write
 from geometry.outline import Segment
+from pipeline.atomic import save_text
 
 ROOT = Path(__file__).resolve().parents[2]
 N_MAX = 3  # harmonics compared
@@ -399,8 +399,7 @@ def test_harmonic_vs_3d_wheel(tmp_path):
     study = run_study()
     md = markdown(study)
     out = Path(__file__).resolve().parents[2] / "docs" / "validation" / "22_wheel_3d.md"
-    with atomic_write(out) as tmp:
-        tmp.write_text(md)
+    save_text(md, out)
     print("\n" + md)
     fine = study.runs[-1]
     for r in fine["rows"]:

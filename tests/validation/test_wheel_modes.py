@@ -15,9 +15,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pipeline.artifacts import atomic_write
 from pipeline.wheel_stage import load_wheel, modes_for_parameters, reference_rows
 from postprocess.mode_reference import markdown_table, match_modes, summary
+from pipeline.atomic import save_text
 
 ROOT = Path(__file__).resolve().parents[2]
 DOCS = ROOT / "docs" / "validation"
@@ -27,8 +27,7 @@ pytestmark = pytest.mark.validation
 
 
 def _write(name: str, text: str) -> None:
-    with atomic_write(DOCS / name) as tmp:
-        tmp.write_text(text)
+    save_text(text, DOCS / name)
 
 
 def _scaled(p: dict, factor: float) -> dict:

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from solvers.constants import SQUEAL_LEVEL_DB
+
 
 def _plt():
     import matplotlib
@@ -27,7 +29,7 @@ MAP_PANELS = (("L_F2", "L_F2 (dB re 1 N)", "magma"), ("f_dominant", "dominant F2
               ("L_W", "L_W (dB re 1e-12 W)", "magma"), ("f_sound", "dominant sound frequency (Hz)", "viridis"))
 
 
-def map_figure(gamma_y, mu, fields: dict, title: str, level: float = 10.0):
+def map_figure(gamma_y, mu, fields: dict, title: str, level: float = SQUEAL_LEVEL_DB):
     """Colour maps over (gamma_y, mu) of the four map measures: fields[name] (len(mu), len(gamma_y)),
     NaN where undefined (grey).  The frequencies are shown for squealing cases only (L_F2 >= level);
     the L_F2 map carries the squeal contour."""
@@ -75,7 +77,7 @@ def map_figure(gamma_y, mu, fields: dict, title: str, level: float = 10.0):
     return fig
 
 
-def damping_figure(steps: list, runs: list, labels: dict, title: str, level: float = 10.0):
+def damping_figure(steps: list, runs: list, labels: dict, title: str, level: float = SQUEAL_LEVEL_DB):
     """The damping study: L_F2 of the full model per step (annotated with the squealing mode) and
     every bisection run (L_F2 over the damping of the mode varied, per step), with the critical
     brackets.  ``steps``: DampingStep-like dicts; ``runs``: dicts with step, model, mode,

@@ -3,7 +3,9 @@ an error names the file, the key, the value and what is allowed).  One schema pe
 ``kind`` picks it."""
 from __future__ import annotations
 
-from .config import Field, ListOf
+from solvers.constants import F_MAX_HZ, SQUEAL_LEVEL_DB
+
+from ..config import Field, ListOf
 
 KINDS = ("map", "damping", "contact")
 
@@ -22,7 +24,7 @@ SIMULATION = {
     "final": Field(float, unit="s", min=0.01, max=2.0, default=0.5, doc="stretch the measures are taken over"),
     "window": Field(float, unit="s", min=0.01, max=2.0, default=0.25,
                     doc="window of the early-stop rule (solvers.interaction.StopRule; 0.25 s as the simulate stage)"),
-    "squeal_level": Field(float, unit="dB", min=-100.0, max=200.0, default=10.0,
+    "squeal_level": Field(float, unit="dB", min=-100.0, max=200.0, default=SQUEAL_LEVEL_DB,
                           doc="squeal when L_F2 >= this; sound power only then (SPEC 6)"),
     "screen_margin": Field(float, unit="1/s", min=0.0, max=1000.0, default=None,
                            doc="map: run the stability screen first and do not simulate the cases whose fastest "
@@ -77,7 +79,7 @@ CONTACT = COMMON | {
                           doc="mode classes simulated one at a time"),
         "nodal_circles_max": Field(int, min=0, max=5, default=0),
         "f_min": Field(float, unit="Hz", min=0.0, max=20000.0, default=100.0),
-        "f_max": Field(float, unit="Hz", min=0.0, max=20000.0, default=6500.0),
+        "f_max": Field(float, unit="Hz", min=0.0, max=20000.0, default=F_MAX_HZ),
         "zeta_kept": Field(float, min=0.0, max=1.0, default=1e-6, doc="damping of the mode kept (SPEC 7)"),
         "zeta_others": Field(float, min=0.0, max=10.0, default=1.0, doc="damping of the other flexible modes"),
         "kick": Field(float, unit="N s", min=0.0, max=100.0, default=0.01,

@@ -16,14 +16,15 @@ from typing import Any
 
 import numpy as np
 
-from . import artifacts, paths
-from .config import config_hash
+from .. import artifacts, paths
+from ..config import config_hash
 
 # the code a study row depends on (hashed into its inputs); missing files are skipped
 CODE = ["solvers/interaction.py", "solvers/timeloop/*.py", "solvers/green.py", "solvers/modal_filter.py",
         "solvers/partitioned.py", "solvers/study.py", "solvers/spectra.py", "postprocess/spectra.py",
-        "pipeline/study_worker.py", "solvers/contact/*.py", "postprocess/radiation.py",
-        "postprocess/force_radiation.py", "pipeline/radiate_stage.py", "solvers/receptance.py"]
+        "pipeline/study/worker.py", "pipeline/study/tasks.py", "solvers/contact/*.py", "postprocess/radiation.py",
+        "postprocess/radiation_surfaces.py", "postprocess/force_radiation.py", "pipeline/radiate_stage.py",
+        "solvers/receptance.py", "solvers/constants.py"]
 
 
 def _code_text(path) -> bytes:
@@ -90,8 +91,8 @@ def load_context(case: str, *, radiation: bool = True, zeta_overrides: dict | No
     """The CaseContext of ``case`` from build/cases/<case>/contact.npz, greens.npz and the wheel's
     modes.npz (ArtifactError when missing or stale, naming the make target).  ``zeta_overrides``
     {mode: zeta} only for the radiation model (the simulation's damping is set per task)."""
-    from .contact_stage import contact_inputs
-    from .greens_stage import greens_inputs
+    from ..contact_stage import contact_inputs
+    from ..greens_stage import greens_inputs
 
     c, _, _, ccfg = contact_inputs(case)
     _, _, _, modes, _, gcfg = greens_inputs(case)      # the wheel modes, checked against the wheel file
@@ -103,7 +104,7 @@ def load_context(case: str, *, radiation: bool = True, zeta_overrides: dict | No
                                       f"{paths.wheel_dir(c['wheel']) / 'modes.npz'}; run `make greens CASE={case}`")
     wheel = {"f": gr["wheel_f"], "mass": gr["wheel_mass"], "zeta": gr["wheel_zeta"], "phi": gr["wheel_phi"],
              "n": modes["n"], "m": modes["m"], "cls": modes["cls"].astype(str), "kind": modes["kind"].astype(str)}
-    from .radiate_stage import load_radiation_model
+    from ..radiate_stage import load_radiation_model
 
     model = load_radiation_model(case, zeta_overrides) if radiation else None
     note = "" if radiation else "not requested"

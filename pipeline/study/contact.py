@@ -23,9 +23,11 @@ from pathlib import Path
 
 import numpy as np
 
-from .config import config_hash
+from .. import paths
+from ..config import config_hash
 from .results_table import ResultsTable
-from .study_runner import Task, pending, run_tasks
+from .runner import Task, pending, run_tasks
+from .tasks import CreepageTask, ModeTask, Simulation
 
 log = logging.getLogger("pipeline.study")
 
@@ -47,9 +49,9 @@ def selected_modes(spec: dict, ctx, quick: bool) -> list[int]:
 def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool = True) -> dict:
     from solvers.study import single_mode_damping
 
-    from .radiate_stage import load_radiation_model
-    from .study_context import load_context
-    from .study_worker import contact_case
+    from ..radiate_stage import load_radiation_model
+    from .context import load_context
+    from .worker import contact_case
 
     sim, mset, cr = spec["simulation"], spec["modes"], spec["creepage"]
     duration = spec["quick"]["duration"] if quick else sim["duration"]
@@ -67,20 +69,17 @@ def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool 
         contexts[case] = ctx
         inputs = config_hash({"context": ctx.inputs, "simulation": sim, "duration": duration, "modes": mset,
                               "creepage": cr, "mu": mu, "gamma_y": gy, "radiation": bool(rad)})
-        common = {"case": case, "mu": mu, "early_stop": sim["early_stop"], "final": min(sim["final"], duration),
-                  "window": sim["window"],
-                  "level": sim["squeal_level"]}
+        run_as = Simulation.of(sim).but(duration=duration, final=min(sim["final"], duration))
         for model in MODELS:
             for i in modes:
-                tasks.append(Task(f"{case}|mode={i}|{model}", inputs, case, common | {
-                    "part": "mode", "model": model, "mode": i, "label": ctx.label(i), "f_mode": float(ctx.wheel["f"][i]),
-                    "zeta": zetas[i].tolist(), "gamma_y": gy, "duration": duration, "kick": mset["kick"]}))
+                tasks.append(Task(f"{case}|mode={i}|{model}", inputs, case, ModeTask(
+                    case=case, model=model, mode=i, label=ctx.label(i), f_mode=float(ctx.wheel["f"][i]),
+                    zeta=tuple(zetas[i].tolist()), mu=mu, gamma_y=gy, kick=mset["kick"], sim=run_as)))
             for f in freqs:
                 n_per = int(np.ceil(cr["settle"] * f - 1e-9))
-                tasks.append(Task(f"{case}|f={f:g}|{model}", inputs, case, common | {
-                    "part": "creepage", "model": model, "f": float(f), "gamma_0": cr["gamma_0"],
-                    "amplitude": cr["amplitude"], "periods": cr["periods"],
-                    "duration": (max(n_per, 1) + cr["periods"]) / f}))
+                tasks.append(Task(f"{case}|f={f:g}|{model}", inputs, case, CreepageTask(
+                    case=case, model=model, f=float(f), mu=mu, gamma_0=cr["gamma_0"], amplitude=cr["amplitude"],
+                    periods=cr["periods"], duration=(max(n_per, 1) + cr["periods"]) / f)))
     table = ResultsTable(out / "table.csv", COLUMNS)
     table.open({t.inputs for t in tasks})
     todo = pending(tasks, table)
@@ -132,10 +131,10 @@ def _f(x, fmt: str) -> str:
 
 
 def write_outputs(spec, src, out: Path, quick, contexts, tasks, table, duration) -> None:
-    from postprocess.study_plots import contact_modes_figure, creepage_figure
+    from postprocess.plots.study import contact_modes_figure, creepage_figure
 
-    from .artifacts import save_csv
-    from .study_stage import save_figure, write_text
+    from ..artifacts import save_csv
+    from ..atomic import save_figure, save_text
 
     rows = [table.rows[t.key] for t in tasks if t.key in table.rows]
     modes = paired(rows, "mode", "mode")
@@ -143,13 +142,13 @@ def write_outputs(spec, src, out: Path, quick, contexts, tasks, table, duration)
     if modes:
         save_csv(out / "modes.csv", list(modes[0]), ([r[k] for k in modes[0]] for r in modes))
         save_figure(contact_modes_figure(modes, "point contact vs Kalker's transient model, one mode kept"),
-                    out / "contact_modes.png")
+                    out / "contact_modes.png", dpi=90)
     if creep:
         save_csv(out / "creepage.csv", list(creep[0]), ([r[k] for k in creep[0]] for r in creep))
         cr = spec["creepage"]
         save_figure(creepage_figure([r for r in rows if r["part"] == "creepage"],
                                     f"prescribed creepage gamma_y = {cr['gamma_0']:g} + {cr['amplitude']:g} "
-                                    f"sin(2 pi f t), rigid structures"), out / "contact_creepage.png")
+                                    f"sin(2 pi f t), rigid structures"), out / "contact_creepage.png", dpi=90)
     sim, m, cr = spec["simulation"], spec["modes"], spec["creepage"]
     level = sim["squeal_level"]
     ml = ["| case | mode | f (Hz) | F2 pp point (N) | F2 pp Kalker (N) | rel. diff | L_W point (dB) | L_W Kalker (dB) "
@@ -172,7 +171,7 @@ def write_outputs(spec, src, out: Path, quick, contexts, tasks, table, duration)
 
 {spec['description']}
 
-Definition `{src}`; {len(rows)} of {len(tasks)} simulations done.
+Definition `{paths.shown(src)}`; {len(rows)} of {len(tasks)} simulations done.
 
 ## In dynamic conditions: one wheel mode kept
 
@@ -200,4 +199,4 @@ component at f.
 
 Tables: `modes.csv`, `creepage.csv` (side by side), `table.csv` (every simulation).
 """
-    write_text(out / "summary.md", text)
+    save_text(text, out / "summary.md")

@@ -20,7 +20,8 @@ import time
 
 import numpy as np
 
-from . import artifacts, paths
+from .. import artifacts, paths
+from ..atomic import save_figure
 
 log = logging.getLogger("pipeline.stability")
 COLUMNS = ["case", "dy_wr", "gamma_y", "mu", "sigma_max", "f_max", "label_max", "sigma_lf", "label_na", "sigma_na"]
@@ -31,7 +32,7 @@ def screen_rows(case: str, gammas, mus) -> list[dict]:
     from solvers.interaction import contact_model
     from solvers.stability import Basis, linearise, operating_point, screen
 
-    from .stability_stage import case_linear_model
+    from ..stability_stage import case_linear_model
 
     c, lm0, labels, _ = case_linear_model(case)
     con, _ = artifacts.load_npz(paths.case_dir(case) / "contact.npz", "contact")
@@ -60,12 +61,12 @@ def _wheel(lm):
 
 
 def run_stability_map(study: str, quick: bool = False) -> str:
-    from .study_map import grid_of
-    from .study_stage import load_study
+    from .map import grid_of
+    from .stage import load_study
 
     spec, _ = load_study(study)
     gammas, mus = grid_of(spec, quick)
-    out = paths.BUILD / "studies" / (study + ("-quick" if quick else ""))
+    out = paths.build() / "studies" / (study + ("-quick" if quick else ""))
     out.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
     rows = [r for case in spec["cases"] for r in screen_rows(case, gammas, mus)]
@@ -77,35 +78,14 @@ def run_stability_map(study: str, quick: bool = False) -> str:
     log.info("stability map %s: %d cases in %.2f s (%.1f ms per case) -> %s", study, len(rows), wall,
              1e3 * wall / max(len(rows), 1), out / "stability.csv")
     if (out / "map.csv").exists():
-        from .stability_agreement import write_agreement
+        from .agreement import write_agreement
 
         write_agreement(out, rows, spec)
     return str(out / "stability.csv")
 
 
 def plot_map(rows: list[dict], gammas, mus, path, case: str) -> None:
-    import matplotlib
+    """``postprocess.plots.stability.map_figure``, saved atomically to ``path``."""
+    from postprocess.plots.stability import map_figure
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    S = np.full((len(mus), len(gammas)), np.nan)
-    labels = {}
-    for r in rows:
-        i, j = int(np.argmin(np.abs(mus - r["mu"]))), int(np.argmin(np.abs(gammas - r["gamma_y"])))
-        S[i, j] = r["sigma_max"]
-        labels[(i, j)] = r["label_max"] if r["sigma_max"] > 0 else ""
-    fig, ax = plt.subplots(figsize=(9, 4))
-    lim = np.nanmax(np.abs(S)) if np.isfinite(S).any() else 1.0
-    im = ax.pcolormesh(-gammas, mus, S, cmap="RdBu_r", vmin=-lim, vmax=lim, shading="nearest")
-    fig.colorbar(im, ax=ax, label="largest growth rate (1/s)")
-    for (i, j), lab in labels.items():
-        if lab:
-            ax.text(-gammas[j], mus[i], lab.replace("track", "LF"), ha="center", va="center", fontsize=5, rotation=90)
-    ax.set_xlabel("-gamma_y")
-    ax.set_ylabel("mu")
-    ax.set_title(f"Stability screen, {case}: fastest-growing pole (label where unstable)")
-    fig.tight_layout()
-    with artifacts.atomic_write(path) as tmp:
-        fig.savefig(tmp, dpi=100)
-    plt.close(fig)
+    save_figure(map_figure(rows, gammas, mus, case), path, dpi=100)

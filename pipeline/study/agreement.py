@@ -12,9 +12,9 @@ import csv
 
 import numpy as np
 
-from . import artifacts, paths
-from .config import load
-from .schemas import CASE
+from .. import artifacts, paths
+from ..config import load
+from ..schemas import CASE
 
 LF_HZ = 200.0
 

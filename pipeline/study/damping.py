@@ -14,9 +14,12 @@ from pathlib import Path
 
 import numpy as np
 
-from .config import config_hash
+from .. import paths
+from ..config import config_hash
 from .results_table import ResultsTable
-from .study_runner import Task, pending, run_tasks
+from ..progress import progress as progress_bar
+from .runner import Task, pending, run_tasks
+from .tasks import DampingTask, Simulation
 
 log = logging.getLogger("pipeline.study")
 
@@ -33,17 +36,16 @@ def operating(spec: dict, ctx) -> tuple[float, float]:
 
 
 def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool = True) -> dict:
-    from tqdm import tqdm
-
     from solvers.study import Outcome, damping_procedure
 
-    from .study_context import load_context
-    from .study_worker import damping_case
+    from .context import load_context
+    from .worker import damping_case
 
     case = spec["cases"][0]
     ctx = load_context(case, radiation=False)
     mu, gamma_y = operating(spec, ctx)
     sim, bis, proc = spec["simulation"], spec["bisection"], spec["procedure"]
+    run_as = Simulation.of(sim)
     if quick:
         bis = bis | {"rel_tol": max(bis["rel_tol"], 0.25)}
     inputs = config_hash({"context": ctx.inputs, "simulation": sim, "mu": mu, "gamma_y": gamma_y})
@@ -53,17 +55,15 @@ def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool 
                             zeta_max=bis["zeta_max"], rel_tol=bis["rel_tol"], max_steps=proc["max_steps"],
                             mode_match=proc["mode_match"])
     stats = {"total": 0, "done_before": 0, "submitted": 0}
-    bar = tqdm(unit="run", desc=spec["name"], disable=not progress, dynamic_ncols=True)
+    bar = progress_bar(unit="run", desc=spec["name"], enabled=progress)
     keys = []
     try:
         batch = next(gen)
         while True:
             tasks = [Task(r.label, inputs, case,
-                          {"step": r.step, "model": r.model, "mode": r.mode, "modes": list(r.modes),
-                           "zeta": list(r.zeta), "zeta_mode": r.zeta[r.mode] if r.mode >= 0 else float("nan"),
-                           "mu": mu, "gamma_y": gamma_y, "duration": sim["duration"],
-                           "early_stop": sim["early_stop"], "final": sim["final"], "window": sim["window"],
-                           "level": sim["squeal_level"]})
+                          DampingTask(step=r.step, model=r.model, mode=r.mode, modes=tuple(r.modes),
+                                      zeta=tuple(r.zeta), zeta_mode=r.zeta[r.mode] if r.mode >= 0 else float("nan"),
+                                      mu=mu, gamma_y=gamma_y, sim=run_as))
                      for r in batch]
             todo = pending(tasks, table)
             stats["total"] += len(tasks)
@@ -86,10 +86,10 @@ def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool 
 
 
 def write_outputs(spec, src, out: Path, quick, ctx, mu, gamma_y, bis, result, rows) -> None:
-    from postprocess.study_plots import damping_figure
+    from postprocess.plots.study import damping_figure
 
-    from .artifacts import save_csv
-    from .study_stage import save_figure, write_text
+    from ..artifacts import save_csv
+    from ..atomic import save_figure, save_text
 
     level = spec["simulation"]["squeal_level"]
     steps = []
@@ -104,7 +104,7 @@ def write_outputs(spec, src, out: Path, quick, ctx, mu, gamma_y, bis, result, ro
     labels = {i: ctx.label(i) for i in range(len(ctx.wheel["f"]))}
     title = (f"{ctx.case}: dy_WR = {1e3 * ctx.dy_wr:.0f} mm, mu = {mu:g}, gamma_y = {gamma_y:g}; "
              f"bisection to zeta_hi/zeta_lo - 1 <= {bis['rel_tol']:g}")
-    save_figure(damping_figure(steps, rows, labels, title, level), out / "damping.png")
+    save_figure(damping_figure(steps, rows, labels, title, level), out / "damping.png", dpi=90)
     lines = ["| step | full model L_F2 (dB) | f (Hz) | squealing mode | f_mode (Hz) | zeta before | critical zeta "
              "bracket | bisection in | runs | note |", "|---:|---:|---:|---|---:|---:|---|---|---:|---|"]
     def g(x, fmt):
@@ -121,7 +121,7 @@ def write_outputs(spec, src, out: Path, quick, ctx, mu, gamma_y, bis, result, ro
 
 {spec['description']}
 
-Definition `{src}`; case `{ctx.case}` (dy_WR = {1e3 * ctx.dy_wr:.0f} mm), mu = {mu:g}, gamma_y = {gamma_y:g}.
+Definition `{paths.shown(src)}`; case `{ctx.case}` (dy_WR = {1e3 * ctx.dy_wr:.0f} mm), mu = {mu:g}, gamma_y = {gamma_y:g}.
 Procedure (solvers/study.py `damping_procedure`): simulate the full wheel model; if it squeals (L_F2 >= {level:g} dB)
 at a wheel mode (dominant frequency within {100 * spec['procedure']['mode_match']:g} % of the mode's), find that
 mode's squeal-critical damping with a wheel of only that mode plus the suspension modes (rail and contact as in the
@@ -140,4 +140,4 @@ Critical damping: {', '.join(f"{d['label']} {d['zeta_lo']:.3g} .. {d['zeta_hi']:
 
 Tables: `steps.csv` (this table), `table.csv` (every simulation: step, model, mode, zeta_mode, L_F2, ...).
 """
-    write_text(out / "summary.md", text)
+    save_text(text, out / "summary.md")

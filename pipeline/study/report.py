@@ -8,13 +8,13 @@ import re
 import shutil
 from pathlib import Path
 
-from . import paths
+from .. import paths
 
 ORDER = ("map", "damping", "contact")       # SPEC 7's order; other studies after them, by name
 
 
 def study_dirs(root: Path | None = None) -> list[Path]:
-    root = root or paths.BUILD / "studies"
+    root = root or paths.build() / "studies"
     if not root.is_dir():
         return []
     done = {p.name: p for p in root.iterdir() if (p / "summary.md").is_file()}

@@ -1,5 +1,5 @@
 """Generic study runner on Dask: tasks with stable keys -> a function -> one row each, appended
-to the study's results table as they finish (pipeline/results_table.py), so an interrupted
+to the study's results table as they finish (pipeline/study/results_table.py), so an interrupted
 study resumes where it stopped and never loses or repeats a finished case.
 
 * ``study_client(scheduler, workers)``: a local cluster (one single-threaded worker process per
@@ -9,7 +9,7 @@ study resumes where it stopped and never loses or repeats a finished case.
   the table, each as one Dask task ``fn(context, params)`` with its context (the per-position
   data, scattered once to every worker, so each worker process holds it once), and appends a row
   per finished task: the key, the inputs hash, what fn returned, the task's own wall time and the
-  worker.  Progress with tqdm (rate, ETA).  A failing task stops the study (the finished rows
+  worker.  Progress with pipeline.progress (a tqdm bar on a terminal only).  A failing task stops the study (the finished rows
   stay) with the case named.
 """
 from __future__ import annotations
@@ -19,7 +19,7 @@ import logging
 import os
 import socket
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any, Callable, Iterator, Mapping
 
 from .results_table import INPUTS, KEY, ResultsTable
@@ -33,11 +33,11 @@ WALL, WORKER = "wall_s", "worker"
 class Task:
     """One case of a study: ``key`` its stable name, ``inputs`` the hash of everything its result
     depends on, ``context`` the name of the shared context it runs with, ``params`` its own
-    parameters (picklable)."""
+    parameters: a typed record of pipeline/study/tasks.py (picklable, frozen)."""
     key: str
     inputs: str
     context: str
-    params: Mapping[str, Any] = field(default_factory=dict)
+    params: Any
 
 
 @dataclass
@@ -66,7 +66,7 @@ def study_client(scheduler: str | None = None, workers: int | None = None) -> It
         yield client
 
 
-def _run_one(fn: Callable, context: Any, params: Mapping) -> dict:
+def _run_one(fn: Callable, context: Any, params: Any) -> dict:
     """Worker side: fn(context, params) with its wall time and the worker's identity."""
     t0 = time.perf_counter()
     row = dict(fn(context, params))
@@ -86,7 +86,8 @@ def run_tasks(tasks: list[Task], fn: Callable, table: ResultsTable, client, cont
     ``table`` must have been opened with the tasks' inputs (stale rows dropped).  ``contexts``:
     name -> object, scattered to all workers once (only those the pending tasks use)."""
     from distributed import as_completed
-    from tqdm import tqdm
+
+    from ..progress import progress as progress_bar
 
     keys = [t.key for t in tasks]
     if len(set(keys)) != len(keys):
@@ -101,11 +102,11 @@ def run_tasks(tasks: list[Task], fn: Callable, table: ResultsTable, client, cont
               for name in sorted({t.context for t in todo})}
     futures = {}
     for t in todo:
-        f = client.submit(_run_one, fn, shared[t.context], dict(t.params), key=f"{desc}-{t.key}-{t.inputs}",
+        f = client.submit(_run_one, fn, shared[t.context], t.params, key=f"{desc}-{t.key}-{t.inputs}",
                           pure=False, retries=1)
         futures[f] = t
-    bar = tqdm(total=len(tasks), initial=stats.done_before, unit="case", desc=desc, disable=not progress,
-               dynamic_ncols=True, smoothing=0.1)
+    bar = progress_bar(total=len(tasks), initial=stats.done_before, unit="case", desc=desc, enabled=progress,
+                       smoothing=0.1)
     try:
         for f in as_completed(futures):
             t = futures.pop(f)

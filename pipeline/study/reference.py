@@ -9,7 +9,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .stability_agreement import _time_loop_mode
+from solvers.constants import SQUEAL_LEVEL_DB
+
+from .agreement import _time_loop_mode
 
 # (dy_wr in mm) -> (reference mode, statement of the reference model, L_W band in dB)
 REFERENCE = {
@@ -21,7 +23,7 @@ REFERENCE = {
 }
 
 
-def position_summary(rows: list[dict], f_modes, labels, level: float = 10.0) -> dict:
+def position_summary(rows: list[dict], f_modes, labels, level: float = SQUEAL_LEVEL_DB) -> dict:
     """Measured behaviour of one position's rows (floats already parsed)."""
     sq = [r for r in rows if r["L_F2"] >= level]
     modes = [_time_loop_mode(r["f_dominant"], f_modes, labels) for r in sq]
@@ -47,7 +49,7 @@ def position_summary(rows: list[dict], f_modes, labels, level: float = 10.0) -> 
             "low_mu_squeal": any(r["mu"] <= 0.2 for r in sq)}
 
 
-def reference_table(rows: list[dict], modes: dict, level: float = 10.0) -> tuple[str, dict]:
+def reference_table(rows: list[dict], modes: dict, level: float = SQUEAL_LEVEL_DB) -> tuple[str, dict]:
     """Markdown side by side per position, and the measured summaries by dy_wr (mm)."""
     out, summ = [], {}
     for dy in sorted(REFERENCE, reverse=True):

@@ -12,9 +12,11 @@ from pathlib import Path
 
 import numpy as np
 
-from .config import ConfigError, config_hash
+from .. import paths
+from ..config import ConfigError, config_hash
 from .results_table import ResultsTable
-from .study_runner import Task, pending, run_tasks
+from .runner import Task, pending, run_tasks
+from .tasks import MapTask, Simulation
 
 log = logging.getLogger("pipeline.study")
 
@@ -38,11 +40,11 @@ def case_key(case: str, gamma_y: float, mu: float) -> str:
 
 
 def screened(spec: dict, quick: bool) -> dict:
-    """{case_key: sigma_max} of the stability screen over the grid (pipeline.stability_map), when the
+    """{case_key: sigma_max} of the stability screen over the grid (pipeline.study.screen), when the
     study sets simulation.screen_margin; else {}."""
     if spec["simulation"].get("screen_margin") is None:
         return {}
-    from .stability_map import screen_rows
+    from .screen import screen_rows
 
     gammas, mus = grid_of(spec, quick)
     return {case_key(r["case"], r["gamma_y"], r["mu"]): r["sigma_max"]
@@ -52,6 +54,7 @@ def screened(spec: dict, quick: bool) -> dict:
 def tasks_of(spec: dict, src: str, contexts: dict, quick: bool) -> list[Task]:
     gammas, mus = grid_of(spec, quick)
     sim = spec["simulation"]
+    run_as = Simulation.of(sim)
     sigma = screened(spec, quick)
     tasks = []
     for case, ctx in contexts.items():
@@ -65,18 +68,15 @@ def tasks_of(spec: dict, src: str, contexts: dict, quick: bool) -> list[Task]:
         for gy in gammas:
             for mu in mus:
                 key = case_key(case, gy, mu)
-                p = {"gamma_y": float(gy), "mu": float(mu), "duration": sim["duration"],
-                     "early_stop": sim["early_stop"], "final": sim["final"], "window": sim["window"],
-                     "level": sim["squeal_level"]}
-                if key in sigma and sigma[key] < -sim["screen_margin"]:
-                    p["screened"] = float(sigma[key])
-                tasks.append(Task(key, inputs, case, p))
+                ruled_out = key in sigma and sigma[key] < -sim["screen_margin"]
+                tasks.append(Task(key, inputs, case, MapTask(gamma_y=float(gy), mu=float(mu), sim=run_as,
+                                                             screened=float(sigma[key]) if ruled_out else None)))
     return tasks
 
 
 def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool = True) -> dict:
-    from .study_context import load_context
-    from .study_worker import map_case
+    from .context import load_context
+    from .worker import map_case
 
     contexts = {case: load_context(case) for case in spec["cases"]}
     tasks = tasks_of(spec, src, contexts, quick)
@@ -105,10 +105,10 @@ def fields_of(rows: dict, case: str, gammas, mus) -> dict:
 
 
 def write_outputs(spec, src, out: Path, quick: bool, contexts: dict, tasks: list, table: ResultsTable) -> None:
-    from postprocess.study_plots import map_figure
+    from postprocess.plots.study import map_figure
 
-    from .artifacts import save_csv
-    from .study_stage import save_figure, write_text
+    from ..artifacts import save_csv
+    from ..atomic import save_figure, save_text
 
     gammas, mus = grid_of(spec, quick)
     level = spec["simulation"]["squeal_level"]
@@ -118,7 +118,7 @@ def write_outputs(spec, src, out: Path, quick: bool, contexts: dict, tasks: list
     save_csv(out / "map.csv", cols, ([rows[k][c] for c in cols] for k in keys if k in rows))
     parts = [f"# Study `{spec['name']}`{' (quick grid)' if quick else ''}: creepage/friction map (SPEC 7)\n",
              f"{spec['description']}\n",
-             f"Definition `{src}`; {len(gammas)} creepages gamma_y = {gammas[0]:g} .. {gammas[-1]:g} x {len(mus)} "
+             f"Definition `{paths.shown(src)}`; {len(gammas)} creepages gamma_y = {gammas[0]:g} .. {gammas[-1]:g} x {len(mus)} "
              f"friction coefficients mu = {mus[0]:g} .. {mus[-1]:g} at {len(contexts)} contact position(s): "
              f"{len(rows)} of {len(keys)} cases done. Each case: the full model from the case's artifacts, at most "
              f"{spec['simulation']['duration']:g} s of rolling"
@@ -132,7 +132,7 @@ def write_outputs(spec, src, out: Path, quick: bool, contexts: dict, tasks: list
     for case, ctx in contexts.items():
         F = fields_of(rows, case, gammas, mus)
         title = f"{case}: dy_WR = {1e3 * ctx.dy_wr:.0f} mm, v = {3.6 * ctx.v:.0f} km/h"
-        save_figure(map_figure(gammas, mus, F, title, level), out / f"map_{case}.png")
+        save_figure(map_figure(gammas, mus, F, title, level), out / f"map_{case}.png", dpi=90)
         L = F["L_F2"]
         sq = np.isfinite(L) & (L >= level)
         reasons = {}
@@ -163,4 +163,4 @@ def write_outputs(spec, src, out: Path, quick: bool, contexts: dict, tasks: list
                     cells.append(f"{v:.0f}")
             lines.append(f"| {gy:g} | " + " | ".join(cells) + " |")
         parts.append("\n".join(lines) + "\n")
-    write_text(out / "summary.md", "\n".join(parts))
+    save_text("\n".join(parts), out / "summary.md")

@@ -1,10 +1,10 @@
 """The cases of the studies as run on a Dask worker: ``fn(context, params) -> row`` (a dict of
-scalars) for the study runner.  The context (pipeline/study_context.CaseContext) arrives once
+scalars) for the study runner.  The context (pipeline.study.context.CaseContext) arrives once
 per worker process; what derives from it (the contact model of each mu) is cached per process,
 and numba is warmed once per process before the first case is timed.
 
 Every case simulates with solvers.interaction.simulate from the steady rolling state plus a
-lateral kick (SPEC 3.5; the simulation's default 0.01 N s unless the study sets one), at most
+lateral kick (SPEC 3.5; the simulation's default 0.01 N s unless the task sets one), at most
 ``duration`` s, stopping early at a limit cycle or after decay unless ``early_stop`` is false;
 squeal measures over the final stretch (``final``, 0.5 s as SPEC 6 by default); sound power
 (L_W, its dominant frequency) with the radiate stage's model for squealing cases only
@@ -18,6 +18,8 @@ import numpy as np
 
 from solvers.interaction import StopRule, WheelModes, contact_model, simulate
 from solvers.study import harmonic_response, periodic_creepage, squeals
+
+from .tasks import CreepageTask, DampingTask, MapTask, ModeTask, Simulation
 
 _CONTACT: dict = {}
 _WARM: set = set()
@@ -49,25 +51,25 @@ def _wheel(ctx, zeta=None, modes=None) -> WheelModes:
     return WheelModes(w["f"][idx], w["mass"][idx], z[idx], w["phi"][idx])
 
 
-def _run(ctx, wheel, p, *, tangential=None, kick=None):
-    cm = _contact(ctx, p["mu"])
+def _run(ctx, wheel, mu: float, gamma_y: float, sim: Simulation, *, tangential=None, kick=None):
+    cm = _contact(ctx, mu)
     tangential = tangential or ctx.tangential
     _warm(ctx, tangential)
-    return simulate(wheel, ctx.rail_kernel, cm, dt=ctx.dt, v=ctx.v, gamma_y=p["gamma_y"], gamma_x=ctx.gamma_x,
-                    preload=ctx.preload, duration=p["duration"], tangential=tangential, normal=ctx.normal,
-                    stop=StopRule(window=p.get("window", 0.25)) if p.get("early_stop", True) else None, kick=kick,
-                    store_every=max(1, int(round(0.01 / ctx.dt))), final=p.get("final", 0.5))
+    return simulate(wheel, ctx.rail_kernel, cm, dt=ctx.dt, v=ctx.v, gamma_y=gamma_y, gamma_x=ctx.gamma_x,
+                    preload=ctx.preload, duration=sim.duration, tangential=tangential, normal=ctx.normal,
+                    stop=StopRule(window=sim.window) if sim.early_stop else None, kick=kick,
+                    store_every=max(1, int(round(0.01 / ctx.dt))), final=sim.final)
 
 
-def _measures(ctx, res, p, radiation=CASE_MODEL) -> dict:
+def _measures(ctx, res, sim: Simulation, radiation=CASE_MODEL) -> dict:
     """Squeal measures; L_W and f_sound (radiate stage) when the case squeals and a model exists."""
     m = res.measures()
     row = {"L_F2": m["L_F2"], "f_dominant": m["f_dominant"], "F2_pp": m["F2_pp"], "F2_mean": m["F2_mean"],
            "contact_loss": m["contact_loss_share"], "stop_reason": res.stop_reason, "t_end": res.duration,
            "L_W": NAN, "f_sound": NAN}
     model = ctx.radiation if radiation is CASE_MODEL else radiation
-    if model is not None and squeals(m["L_F2"], p.get("level", 10.0)):
-        from pipeline.radiate_stage import sound_power_of_forces
+    if model is not None and squeals(m["L_F2"], sim.level):
+        from ..radiate_stage import sound_power_of_forces
 
         s = sound_power_of_forces(model, res.F_final, res.dt_final or res.dt)
         row["L_W"], row["f_sound"] = float(s["L_W"]), float(s["f_sound"])
@@ -80,52 +82,51 @@ def _measures(ctx, res, p, radiation=CASE_MODEL) -> dict:
 # the cases of each study
 # ----------------------------------------------------------------------------------------------
 
-def map_case(ctx, p) -> dict:
+def map_case(ctx, t: MapTask) -> dict:
     """Creepage/friction map (SPEC 7): the full wheel model at (gamma_y, mu)."""
-    row = {"case": ctx.case, "dy_wr": ctx.dy_wr, "gamma_y": p["gamma_y"], "mu": p["mu"]}
-    if "screened" in p:                 # the stability screen found every pole decaying: not simulated
+    row = {"case": ctx.case, "dy_wr": ctx.dy_wr, "gamma_y": t.gamma_y, "mu": t.mu}
+    if t.screened is not None:          # the stability screen found every pole decaying: not simulated
         return row | {k: NAN for k in ("L_F2", "f_dominant", "F2_pp", "F2_mean", "contact_loss", "L_W", "f_sound")} | {
-            "stop_reason": f"screened (sigma_max {p['screened']:+.2f}/s)", "t_end": 0.0}
-    return row | _measures(ctx, _run(ctx, _wheel(ctx), p), p)
+            "stop_reason": f"screened (sigma_max {t.screened:+.2f}/s)", "t_end": 0.0}
+    return row | _measures(ctx, _run(ctx, _wheel(ctx), t.mu, t.gamma_y, t.sim), t.sim)
 
 
-def damping_case(ctx, p) -> dict:
-    """Wheel modal damping study (SPEC 7): the wheel of modes ``p['modes']`` with damping
-    ``p['zeta']`` (full-length vector)."""
-    res = _run(ctx, _wheel(ctx, p["zeta"], p["modes"]), p)
-    row = {"step": p["step"], "model": p["model"], "mode": p["mode"], "zeta_mode": p["zeta_mode"],
-           "n_modes": len(p["modes"])}
-    return row | _measures(ctx, res, p, radiation=None)
+def damping_case(ctx, t: DampingTask) -> dict:
+    """Wheel modal damping study (SPEC 7): the wheel of modes ``t.modes`` with damping
+    ``t.zeta`` (full-length vector)."""
+    res = _run(ctx, _wheel(ctx, t.zeta, t.modes), t.mu, t.gamma_y, t.sim)
+    row = {"step": t.step, "model": t.model, "mode": t.mode, "zeta_mode": t.zeta_mode, "n_modes": len(t.modes)}
+    return row | _measures(ctx, res, t.sim, radiation=None)
 
 
-def mode_case(ctx, p) -> dict:
+def mode_case(ctx, t: ModeTask) -> dict:
     """Contact-model validation in dynamic conditions (SPEC 7): every mode kept, damping
-    ``p['zeta']`` (one flexible mode lightly damped, the others at zeta = 1), rail kept; point
-    contact or Kalker's transient model (``p['model']``).  Sound power with the radiation model
+    ``t.zeta`` (one flexible mode lightly damped, the others at zeta = 1), rail kept; point
+    contact or Kalker's transient model (``t.model``).  Sound power with the radiation model
     of the same damping (ctx.extra['radiation'][mode], when there)."""
-    res = _run(ctx, _wheel(ctx, p["zeta"]), p, tangential=p["model"], kick=p.get("kick"))
-    return _measures(ctx, res, p, radiation=ctx.extra.get("radiation", {}).get(p["mode"]))
+    res = _run(ctx, _wheel(ctx, t.zeta), t.mu, t.gamma_y, t.sim, tangential=t.model, kick=t.kick)
+    return _measures(ctx, res, t.sim, radiation=ctx.extra.get("radiation", {}).get(t.mode))
 
 
-def creepage_case(ctx, p) -> dict:
+def creepage_case(ctx, t: CreepageTask) -> dict:
     """Stand-alone contact validation (SPEC 7): rigid, fixed wheel and rail, prescribed creepage
     gamma_y(t) = g0 + ga sin(2 pi f t); F2 over the last ``periods`` periods: mean, amplitude and
     phase at f, peak-to-peak."""
-    f = p["f"]
-    n = int(round(p["duration"] / ctx.dt))
-    gy = periodic_creepage(p["gamma_0"], p["amplitude"], f, ctx.dt, n)
-    cm = _contact(ctx, p["mu"])
-    _warm(ctx, p["model"])
+    n = int(round(t.duration / ctx.dt))
+    gy = periodic_creepage(t.gamma_0, t.amplitude, t.f, ctx.dt, n)
+    cm = _contact(ctx, t.mu)
+    _warm(ctx, t.model)
     res = simulate(None, None, cm, dt=ctx.dt, v=ctx.v, gamma_y=gy, gamma_x=ctx.gamma_x, preload=ctx.preload,
-                   duration=n * ctx.dt, tangential=p["model"], normal=ctx.normal, stop=None, kick=0.0,
-                   final=p["duration"])
-    h = harmonic_response(res.F_final[:, 1], res.dt_final or ctx.dt, f, p["periods"])
+                   duration=n * ctx.dt, tangential=t.model, normal=ctx.normal, stop=None, kick=0.0,
+                   final=t.duration)
+    h = harmonic_response(res.F_final[:, 1], res.dt_final or ctx.dt, t.f, t.periods)
     return {"F2_mean": h["mean"], "F2_amplitude": h["amplitude"], "F2_phase": h["phase"], "F2_pp": h["pp"]}
 
 
-def contact_case(ctx, p) -> dict:
+def contact_case(ctx, t: ModeTask | CreepageTask) -> dict:
     """Contact-model validation: a mode case or a prescribed-creepage case, with its identity."""
-    row = {"case": ctx.case, "part": p["part"], "model": p["model"]}
-    if p["part"] == "mode":
-        return row | {"mode": p["mode"], "label": p["label"], "f_mode": p["f_mode"]} | mode_case(ctx, p)
-    return row | {"f": p["f"]} | creepage_case(ctx, p)
+    if isinstance(t, ModeTask):
+        row = {"case": ctx.case, "part": "mode", "model": t.model}
+        return row | {"mode": t.mode, "label": t.label, "f_mode": t.f_mode} | mode_case(ctx, t)
+    row = {"case": ctx.case, "part": "creepage", "model": t.model}
+    return row | {"f": t.f} | creepage_case(ctx, t)

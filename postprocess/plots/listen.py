@@ -1,13 +1,15 @@
-"""listen.png: the 1/3-octave spectrum at the receiver (unweighted and
-A-weighted) and the envelope of the sound (onset, limit cycle)."""
+"""Figure of the listen stage (listen.png): the 1/3-octave spectrum at the
+receiver (unweighted and A-weighted) and the envelope of the sound (onset,
+limit cycle)."""
 from __future__ import annotations
 
 import numpy as np
 
-from . import artifacts
+from solvers.constants import SQUEAL_LEVEL_DB
 
 
-def plot_listening(a: dict, path, case: str) -> None:
+def listening_figure(a: dict, case: str):
+    """``a``: the arrays of listen.npz.  Returns the figure."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -30,7 +32,7 @@ def plot_listening(a: dict, path, case: str) -> None:
     ax.set_ylabel("L_p (dB re 20 uPa)")
     ax.grid(True, axis="y", alpha=0.3)
     ax.legend(fontsize=8, loc="upper left")
-    flag = "" if a["meaningful"] else " (no squeal: L_F2 < 10 dB, levels not meaningful)"
+    flag = "" if a["meaningful"] else f" (no squeal: L_F2 < {SQUEAL_LEVEL_DB:g} dB, levels not meaningful)"
     ax.set_title(f"{case}: receiver {float(a['distance']):g} m from the track centre, {float(a['height']):g} m above "
                  f"the rail\n(wheel centre {float(a['r_direct']):.2f} m away; {a['ground']} ground "
                  f"{float(a['ground_depth']):g} m below the rail, {a['directivity']} source){flag}", fontsize=9)
@@ -46,6 +48,4 @@ def plot_listening(a: dict, path, case: str) -> None:
     ax2.grid(True, alpha=0.3)
     ax2.legend(fontsize=8)
     fig.tight_layout()
-    with artifacts.atomic_write(path) as tmp:
-        fig.savefig(tmp, dpi=90)
-    plt.close(fig)
+    return fig

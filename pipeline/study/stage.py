@@ -1,9 +1,10 @@
 """Study stage (SPEC 7): ``python -m pipeline study --study NAME [--quick] [--scheduler ADDR]
 [--workers N] [--out DIR]``.
 
-A study is defined by pipeline/studies/<NAME>.toml (schemas in pipeline/study_schemas.py):
-``kind = "map"`` (creepage/friction map), ``"damping"`` (wheel modal damping study) or
-``"contact"`` (contact-model validation).  The cases run on Dask (pipeline/study_runner.py),
+A study is defined by pipeline/studies/<NAME>.toml (schemas in pipeline/study/schemas.py):
+``kind = "map"`` (creepage/friction map, pipeline/study/map.py), ``"damping"`` (wheel modal
+damping study, damping.py) or ``"contact"`` (contact-model validation, contact.py).  The cases
+run on Dask (pipeline/study/runner.py),
 their rows are appended to the study's table as they finish; rerunning the command resumes an
 interrupted study and only renders the outputs of a finished one.
 
@@ -15,7 +16,6 @@ from __future__ import annotations
 
 import contextlib
 import fcntl
-import importlib
 import json
 import logging
 import os
@@ -23,24 +23,26 @@ import time
 import tomllib
 from pathlib import Path
 
-from . import artifacts, paths
-from .config import ConfigError, load
-from .study_schemas import COMMON, KINDS, SCHEMAS
+from .. import artifacts, paths
+from ..config import ConfigError, load
+from .schemas import COMMON, KINDS, SCHEMAS
 
 log = logging.getLogger("pipeline.study")
 
-STUDIES = Path(os.environ.get("SQUEAL_STUDY_DIR", paths.ROOT / "pipeline" / "studies"))
 
 
-def study_file(name: str) -> Path:
-    return STUDIES / f"{name}.toml"
+def _kind_module(kind: str):
+    """The module that runs a study of this kind: ``run(spec, src, out, ...)``."""
+    from . import contact, damping, map
+
+    return {"map": map, "damping": damping, "contact": contact}[kind]
 
 
 def load_study(name: str) -> tuple[dict, str]:
     """The validated study definition and its path."""
-    path = study_file(name)
+    path = paths.study_file(name)
     if not path.exists():
-        raise ConfigError(str(path), detail=f"no such study; available: {paths.available(STUDIES)}")
+        raise ConfigError(str(path), detail=f"no such study; available: {paths.available(paths.studies())}")
     try:
         kind = tomllib.loads(path.read_text()).get("kind")
     except (tomllib.TOMLDecodeError, UnicodeDecodeError):
@@ -51,8 +53,8 @@ def load_study(name: str) -> tuple[dict, str]:
         raise ConfigError(str(path), [("kind", spec["kind"], f"one of {list(KINDS)}")])
     for case in spec["cases"]:
         if not paths.case_file(case).exists():
-            raise ConfigError(str(path), [("cases", case, f"a case in {paths.CASES}: "
-                                                          f"{paths.available(paths.CASES)}")])
+            raise ConfigError(str(path), [("cases", case, f"a case in {paths.cases()}: "
+                                                          f"{paths.available(paths.cases())}")])
     return spec, str(path)
 
 
@@ -66,7 +68,7 @@ class LazyClient:
 
     def get(self):
         if self._client is None:
-            from .study_runner import study_client
+            from .runner import study_client
 
             t0 = time.perf_counter()
             self._client = self._stack.enter_context(study_client(self.scheduler, self.workers))
@@ -93,9 +95,9 @@ def run_study(name: str, *, quick: bool = False, scheduler: str | None = None, w
               out: str | os.PathLike | None = None, progress: bool = True) -> Path:
     """Run (or resume) the study ``name``; returns the path of its summary.md."""
     spec, src = load_study(name)
-    out = Path(out) if out else paths.BUILD / "studies" / (spec["name"] + ("-quick" if quick else ""))
+    out = Path(out) if out else paths.build() / "studies" / (spec["name"] + ("-quick" if quick else ""))
     out.mkdir(parents=True, exist_ok=True)
-    mod = importlib.import_module(f".study_{spec['kind']}", __package__)
+    mod = _kind_module(spec["kind"])
     client = LazyClient(scheduler, workers)
     t0 = time.perf_counter()
     with open(out / ".lock", "w") as lock:
@@ -115,16 +117,3 @@ def run_study(name: str, *, quick: bool = False, scheduler: str | None = None, w
     log.info("study %s: %d cases, %d already done, %d run in %.1f s -> %s", spec["name"], stats["total"],
              stats["done_before"], stats["submitted"], record["wall_s"], out / "summary.md")
     return out / "summary.md"
-
-
-def write_text(path: Path, text: str) -> None:
-    with artifacts.atomic_write(path) as tmp:
-        tmp.write_text(text)
-
-
-def save_figure(fig, path: Path, dpi: int = 90) -> None:
-    import matplotlib.pyplot as plt
-
-    with artifacts.atomic_write(path) as tmp:
-        fig.savefig(tmp, dpi=dpi)
-    plt.close(fig)

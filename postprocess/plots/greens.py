@@ -1,0 +1,29 @@
+"""Figure of the greens stage (greens.png): the wheel and rail Green's functions."""
+from __future__ import annotations
+
+import numpy as np
+
+
+def kernels_figure(a: dict, case: str):
+    """The first lags of the wheel and rail Green's functions (``a``: greens.npz)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axs = plt.subplots(2, 1, figsize=(8, 6))
+    tw = np.arange(len(a["wheel_kernel"])) * a["dt"]
+    tr = np.arange(len(a["rail_kernel"])) * a["dt"]
+    for (i, j, lab) in ((0, 0, "g22"), (1, 1, "g33"), (0, 1, "g23")):
+        axs[0].plot(1e3 * tw, a["wheel_kernel"][:, i, j], lw=0.6, label=lab)
+        axs[1].plot(1e3 * tr, a["rail_kernel"][:, i, j], lw=0.8, label=lab)
+    axs[0].set_title(f"{case}: wheel Green's function (Kropp, band-limited to {a['wheel_band_limit'] / 1e3:.1f} kHz), "
+                     f"first {1e3 * tw[-1]:.0f} ms")
+    axs[1].set_title(f"rail moving Green's function, v = {3.6 * a['v']:.0f} km/h")
+    for ax in axs:
+        ax.set_xlabel("time (ms)")
+        ax.set_ylabel("m/N")
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig

@@ -1,0 +1,58 @@
+"""Figures of the stability screen: the closed-loop poles of a case (stability.png)
+and the screen over a map study's grid (stability_<case>.png)."""
+from __future__ import annotations
+
+import numpy as np
+
+
+def screen_figure(a: dict, case: str, c: dict):
+    """Growth rate against frequency of every pole (``a``: stability.npz; ``c``: the case)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    f, s, lab = a["f_hz"], a["sigma"], a["label"]
+    un = s > 0
+    ax.semilogx(f[~un], s[~un], "o", color="0.6", ms=4, label="stable")
+    ax.semilogx(f[un], s[un], "o", color="C3", ms=6, label="unstable")
+    for fi, si, li in zip(f[un], s[un], lab[un]):
+        ax.annotate(li, (fi, si), textcoords="offset points", xytext=(4, 4), fontsize=8)
+    ax.axhline(0, color="k", lw=0.6)
+    ax.set_xlabel("frequency (Hz)")
+    ax.set_ylabel("growth rate sigma (1/s)")
+    ax.set_ylim(max(-30.0, float(s.min()) - 1) if len(s) else -30, max(5.0, 1.15 * float(s.max())) if len(s) else 5)
+    ax.set_title(f"{case}: dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm, mu = {c['friction']['mu']}, "
+                 f"gamma_y = {c['kinematics']['gamma_y']}")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3, which="both")
+    fig.tight_layout()
+    return fig
+
+
+def map_figure(rows: list[dict], gammas, mus, case: str):
+    """The largest growth rate over the (gamma_y, mu) grid of one case."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    S = np.full((len(mus), len(gammas)), np.nan)
+    labels = {}
+    for r in rows:
+        i, j = int(np.argmin(np.abs(mus - r["mu"]))), int(np.argmin(np.abs(gammas - r["gamma_y"])))
+        S[i, j] = r["sigma_max"]
+        labels[(i, j)] = r["label_max"] if r["sigma_max"] > 0 else ""
+    fig, ax = plt.subplots(figsize=(9, 4))
+    lim = np.nanmax(np.abs(S)) if np.isfinite(S).any() else 1.0
+    im = ax.pcolormesh(-gammas, mus, S, cmap="RdBu_r", vmin=-lim, vmax=lim, shading="nearest")
+    fig.colorbar(im, ax=ax, label="largest growth rate (1/s)")
+    for (i, j), lab in labels.items():
+        if lab:
+            ax.text(-gammas[j], mus[i], lab.replace("track", "LF"), ha="center", va="center", fontsize=5, rotation=90)
+    ax.set_xlabel("-gamma_y")
+    ax.set_ylabel("mu")
+    ax.set_title(f"Stability screen, {case}: fastest-growing pole (label where unstable)")
+    fig.tight_layout()
+    return fig
