@@ -36,6 +36,7 @@ RFILE := geometry/rails/$(RAIL).toml
 STUDY ?= map
 # the cases a study runs on: its `cases = [...]` line (read without Python)
 STUDY_CASES = $(shell sed -n 's/^cases *= *\[\(.*\)\].*/\1/p' pipeline/studies/$(STUDY).toml | tr -d '",')
+MAP_CASES = $(shell sed -n 's/^cases *= *\[\(.*\)\].*/\1/p' pipeline/studies/map.toml | tr -d '",')
 export SQUEAL_BUILD_DIR := $(abspath $(BUILD))
 export VTK_DEFAULT_OPENGL_WINDOW ?= vtkEGLRenderWindow
 export OMP_NUM_THREADS ?= 1
@@ -54,7 +55,7 @@ $(DEPS_MK): $(PKG_PY)
 	$(DEPS_PY) pipeline/deps.py > $@.tmp && mv $@.tmp $@ || { rm -f $@.tmp; exit 1; }
 
 .DEFAULT_GOAL := all
-.PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate stability stability-map listen report study check calibrate clean distclean FORCE
+.PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate stability stability-map listen report study check calibrate calibrate-profiles calibrate-coupling calibrate-wheel calibrate-suspension clean distclean FORCE
 .DELETE_ON_ERROR:
 
 all: report ## run the default case as far as the stages exist (wheel, rail, contact, greens, simulate, radiate, report)
@@ -146,9 +147,19 @@ stability-map: | $(STAMP) ## the stability screen over STUDY's grid (seconds; ne
 	@for c in $(STUDY_CASES); do $(MAKE) --no-print-directory contact greens CASE=$$c || exit 1; done
 	$(PY) -m pipeline stability_map --study $(STUDY) $(if $(QUICK),--quick)
 
-# --- profiles: the standard profiles and the worn C20/BV50 pair fitted to the thesis' contact points
-calibrate: | $(STAMP) ## write geometry/profiles/ (S1002, C20, BV50, 60E1 new; C20 and BV50 worn, calibrated to thesis [4.1])
+# --- calibration of what the thesis does not give (docs/validation, "Calibration"); in this order,
+# each writes its values into the data files (comments kept); none runs in `make` or `make test`
+calibrate: calibrate-profiles calibrate-suspension calibrate-wheel calibrate-suspension ## all calibrations in order (~40 min)
+calibrate-profiles: | $(STAMP) ## write geometry/profiles/ (S1002, C20, BV50, 60E1 new; C20 and BV50 worn, fitted to thesis [4.1])
 	$(PY) -m pipeline.calibrate_profiles
+calibrate-coupling: | $(STAMP) ## scan the (2,0,a)/(3,0,a) coupling zero points with the stability screen (the wheel fit's targets)
+	@for c in $(MAP_CASES); do $(MAKE) --no-print-directory contact greens CASE=$$c || exit 1; done
+	$(PY) -m pipeline.calibrate_coupling --study map
+calibrate-wheel: | $(STAMP) ## fit the C20 section to the 34 reference frequencies and the coupling zero points (~30 min)
+	$(PY) -m pipeline.calibrate_wheel --wheel c20 --write
+calibrate-suspension: | $(STAMP) ## fit the C20's vertical suspension damping to the reference's low-frequency threshold at -5 mm
+	@for c in $(MAP_CASES); do $(MAKE) --no-print-directory contact greens CASE=$$c || exit 1; done
+	$(PY) -m pipeline.calibrate_suspension --study map --write
 
 # --- quality
 test: | $(STAMP) ## run the test suite (fast; validation tests are skipped)

