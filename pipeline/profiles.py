@@ -61,24 +61,21 @@ def case_profiles(c: dict, pw: dict, pr: dict):
     from geometry.standard_profiles import rail_head_points, wheel_tread_points
 
     desc = {}
+
+    def surface(kind, name, params, points, source):
+        """The named profile file (checked to be a ``kind`` profile), else the parametric one."""
+        if name:
+            prof, desc[f"{kind}_profile"] = read_profile(name)
+            if prof.kind != kind:
+                raise ConfigError(str(profile_file(name)), detail=f"kind is {prof.kind!r}, a {kind} profile is needed")
+            return prof
+        desc[f"{kind}_profile"] = "parametric"
+        return build_profile(*points(params), kind, f"{params['name']} (parametric)", source)
+
     wname = c["contact"].get("wheel_profile") or pw.get("running_surface", {}).get("profile")
     rname = c["contact"].get("rail_profile") or pr.get("running_surface", {}).get("profile")
-    if wname:
-        wheel, desc["wheel_profile"] = read_profile(wname)
-        if wheel.kind != "wheel":
-            raise ConfigError(str(profile_file(wname)), detail=f"kind is {wheel.kind!r}, a wheel profile is needed")
-    else:
-        wheel = build_profile(*wheel_tread_points(pw), "wheel", f"{pw['name']} (parametric)",
-                              "wheel file: cone + flange (geometry.wheel.tread_profile)")
-        desc["wheel_profile"] = "parametric"
-    if rname:
-        rail, desc["rail_profile"] = read_profile(rname)
-        if rail.kind != "rail":
-            raise ConfigError(str(profile_file(rname)), detail=f"kind is {rail.kind!r}, a rail profile is needed")
-    else:
-        rail = build_profile(*rail_head_points(pr), "rail", f"{pr['name']} (parametric)",
-                             "rail file: head arcs (geometry.rail.crown_arcs)")
-        desc["rail_profile"] = "parametric"
+    wheel = surface("wheel", wname, pw, wheel_tread_points, "wheel file: cone + flange (geometry.wheel.tread_profile)")
+    rail = surface("rail", rname, pr, rail_head_points, "rail file: head arcs (geometry.rail.crown_arcs)")
     desc.update(wheel_name=wname or "", rail_name=rname or "")
     return wheel, rail, desc
 
