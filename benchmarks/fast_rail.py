@@ -38,12 +38,11 @@ BUILD = ROOT / "build"
 
 def _kernels(rows: list) -> None:
     from pipeline.greens_stage import RAIL_F_TAPER, RAIL_LAGS, RAIL_NT, rail_taper
-    from pipeline.rail_kernel import wave_table_threads
+    from pipeline.rail_kernel import table_transfer, wave_table_threads
     from pipeline.rail_stage import load_rail_params
     from solvers.green import frequency_grid, moving_green
     from solvers.moving_kernel import moving_green_waves
     from pipeline.rail_model import build_rail_model
-    from solvers.rail_response import evaluate_table
 
     dt, v, y = 36e-6, 50 / 3.6, 0.012
     pr, _ = load_rail_params("bv50")
@@ -62,10 +61,7 @@ def _kernels(rows: list) -> None:
     w = rail_taper(f[inside])
     a = T["a"][:, :, 0] * w[:, None, None, None]
 
-    def transfer(x, ff):
-        G = np.zeros((len(x), len(ff), 2, 2), complex)
-        G[:, inside] = evaluate_table(T, x)[0] * w[None, :, None, None]
-        return G
+    transfer = table_transfer(T, inside, w)
 
     moving_green_waves(T["k"][:4], a[:4], v, dt, 8, RAIL_NT)          # JIT (or cache load)
     t_new = min_time(lambda: moving_green_waves(T["k"], a, v, dt, RAIL_LAGS, RAIL_NT), 3)

@@ -48,23 +48,12 @@ def case_models(study: str = "map"):
 
 def share(lm, labels, con, c, target: str, gammas, mus, mu_max: float = np.inf) -> float:
     """Share of the grid's unstable cases (mu < mu_max) whose fastest pole is ``target``."""
-    from solvers.interaction import WheelModes, contact_model
-    from solvers.stability import Basis, linearise, operating_point, screen
+    from .study.screen import grid_roots
 
-    wheel = WheelModes(lm.f_r, lm.modal_mass, lm.zeta, lm.phi)
-    v, basis, hits, n = c["kinematics"]["speed"], None, 0, 0
-    for mu in mus:
-        if mu >= mu_max:
-            continue
-        cm = contact_model(con, float(mu))
-        lmu = linearise(wheel, lm.rail_kernel, cm, dt=lm.dt, v=v, gamma_y=float(gammas[0]), preload=lm.F3)
-        basis = basis or Basis(lmu)
-        for gy in gammas:
-            r = screen(operating_point(lmu, cm, v=v, gamma_y=float(gy)), basis, polish=False)[0]
-            if r.sigma > 0:
-                n += 1
-                hits += r.mode >= 0 and labels[r.mode] == target
-    return hits / n if n else np.nan
+    fastest = [roots[0] for _, _, roots in grid_roots(lm, con, c["kinematics"]["speed"], gammas,
+                                                      [mu for mu in mus if mu < mu_max])]
+    unstable = [r for r in fastest if r.sigma > 0]
+    return sum(r.mode >= 0 and labels[r.mode] == target for r in unstable) / len(unstable) if unstable else np.nan
 
 
 def scan(study: str = "map", grid_mm=GRID_MM) -> list[tuple[float, float, dict]]:

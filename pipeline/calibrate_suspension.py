@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import argparse
 import logging
-import re
 
 import numpy as np
 
@@ -39,28 +38,17 @@ VERTICAL = ("bounce", "roll")
 def lf_growth(case: str, c_ratio: float, mu: float, gammas) -> float:
     """Fastest growth rate (1/s) of a low-frequency (track) root over ``gammas`` at friction
     ``mu`` with the vertical suspension damping scaled by ``c_ratio``; -inf when none."""
-    from solvers.interaction import contact_model
-    from solvers.stability import Basis, operating_point, screen
-
     from . import artifacts
     from .stability_stage import case_linear_model
+    from .study.screen import grid_roots
 
-    c, lm, _, _ = case_linear_model(case, mu=mu)
+    c, lm, _, _ = case_linear_model(case)
     modes, _ = artifacts.load_npz(paths.wheel_dir(c["wheel"]) / "modes.npz", "wheel-modes")
     zeta = np.array(lm.zeta, float)
-    vert = np.isin(np.asarray(modes["kind"]).astype(str), VERTICAL)
-    zeta[vert] *= c_ratio
-    lm = lm._replace(zeta=zeta)
+    zeta[np.isin(np.asarray(modes["kind"]).astype(str), VERTICAL)] *= c_ratio
     con, _ = artifacts.load_npz(paths.case_dir(case) / "contact.npz", "contact")
-    cm = contact_model(con, mu)
-    basis = Basis(lm)
-    v = c["kinematics"]["speed"]
-    worst = -np.inf
-    for gy in gammas:
-        roots = screen(operating_point(lm, cm, v=v, gamma_y=float(gy)), basis, polish=False)
-        lf = [r.sigma for r in roots if r.mode < 0]
-        worst = max([worst] + lf)
-    return worst
+    grid = grid_roots(lm._replace(zeta=zeta), con, c["kinematics"]["speed"], gammas, [mu])
+    return max([-np.inf] + [r.sigma for _, _, roots in grid for r in roots if r.mode < 0])
 
 
 def calibrate(study: str = "map", lo: float = 1.0, hi: float = 100.0) -> dict:
@@ -83,18 +71,6 @@ def calibrate(study: str = "map", lo: float = 1.0, hi: float = 100.0) -> dict:
             "sigma_loud": lf_growth(CASE, ratio, MU_LOUD, gammas)}
 
 
-def write_back(path, key: str, value: float) -> None:
-    """Set ``key`` in the [suspension] table of a wheel file, comments kept (atomic)."""
-    from .artifacts import atomic_write
-
-    text = path.read_text()
-    sec = re.search(r"^\[suspension\]\s*$(.*?)(?=^\[|\Z)", text, flags=re.M | re.S)
-    body = re.sub(rf"^({key}\s*=\s*)[-+0-9.eE]+", lambda m: f"{m.group(1)}{value:.4g}", sec.group(1),
-                  count=1, flags=re.M)
-    with atomic_write(path) as tmp:
-        tmp.write_text(text[:sec.start(1)] + body + text[sec.end(1):])
-
-
 def main(argv=None) -> None:
     from .config import load
     from .schemas import CASE as CASE_SCHEMA
@@ -112,7 +88,9 @@ def main(argv=None) -> None:
     print(f"c_vertical = {c_v:.4g} N s/m (x {r['ratio']:.3f}); fastest low-frequency growth at {CASE}: "
           f"{r['sigma_quiet']:+.2f} 1/s at mu = {MU_QUIET}, {r['sigma_loud']:+.2f} 1/s at mu = {MU_LOUD}")
     if a.write:
-        write_back(paths.wheel_file(wheel), "c_vertical", c_v)
+        from .calibrate_wheel import set_toml_values
+
+        set_toml_values(paths.wheel_file(wheel), {("suspension", "c_vertical"): f"{c_v:.4g}"})
 
 
 if __name__ == "__main__":

@@ -174,18 +174,22 @@ def fit(p: dict, max_nfev: int = 8, workers: int = 2):
     return q, s
 
 
-def write_back(path, q: dict) -> None:
-    """Put the fitted values of ``FREE`` into the wheel file, keeping its comments (atomic)."""
-    from .artifacts import atomic_write
+def set_toml_values(path, values: dict) -> None:
+    """Set {(table, key): text} in a TOML file, keeping its comments and layout (atomic)."""
+    from .atomic import atomic_write
 
     text = path.read_text()
-    for s, k in FREE:
-        sec = re.search(rf"^\[{s}\]\s*$(.*?)(?=^\[|\Z)", text, flags=re.M | re.S)
-        body = re.sub(rf"^({k}\s*=\s*)[-+0-9.eE]+", lambda m: f"{m.group(1)}{q[s][k]:.5f}", sec.group(1),
-                      count=1, flags=re.M)
+    for (table, key), val in values.items():
+        sec = re.search(rf"^\[{table}\]\s*$(.*?)(?=^\[|\Z)", text, flags=re.M | re.S)
+        body = re.sub(rf"^({key}\s*=\s*)[-+0-9.eE]+", lambda m: m.group(1) + val, sec.group(1), count=1, flags=re.M)
         text = text[:sec.start(1)] + body + text[sec.end(1):]
     with atomic_write(path) as tmp:
         tmp.write_text(text)
+
+
+def write_back(path, q: dict) -> None:
+    """Put the fitted values of ``FREE`` into the wheel file."""
+    set_toml_values(path, {(s, k): f"{q[s][k]:.5f}" for s, k in FREE})
 
 
 def main(argv=None) -> None:

@@ -101,6 +101,19 @@ def wave_table_threads(model, freqs, y: float, workers: int = 2) -> dict:
     return out
 
 
+def table_transfer(T: dict, inside: np.ndarray, w: np.ndarray):
+    """G(x, f) (n_x, n_f, 2, 2) of wave table ``T`` (frequencies f[inside]) times the taper ``w``,
+    zero elsewhere: the input of the direct construction ``solvers.green.moving_green`` that the
+    wave-sum kernel replaces (its reference in the tests and the benchmark)."""
+    from solvers.rail_response import evaluate_table
+
+    def transfer(x, ff):
+        G = np.zeros((len(x), len(ff), 2, 2), complex)
+        G[:, inside] = evaluate_table(T, x)[0] * w[None, :, None, None]
+        return G
+    return transfer
+
+
 def build_kernel(pr: dict, y_r: float, v: float, dt: float, grid: dict, taper) -> dict:
     """Moving kernel g_mov (n_lags, 2, 2), the fixed-point kernel, its decay, the tail ratio and
     the point receptance at head point y_r >= 0 (module notes)."""

@@ -55,6 +55,17 @@ class RingState(NamedTuple):
     pos: np.ndarray
 
 
+def at_rest(state: tuple) -> tuple:
+    """A state tuple of the same type with zeroed arrays of its own (the convolvers' ``fresh``)."""
+    return type(state)(*(np.zeros_like(a) for a in state))
+
+
+def rest_in_place(state: tuple) -> None:
+    """Zero every array of a state tuple in place (the convolvers' ``reset``)."""
+    for a in state:
+        a[...] = 0
+
+
 class RingConvolver(NamedTuple):
     """Per-step direct convolution with a ring buffer of past forces (rail).
     g (K, 2, 2) the kernel (g[0] unused; read only); ``state`` (RingState) advanced IN PLACE by
@@ -68,8 +79,7 @@ class RingConvolver(NamedTuple):
 
     def reset(self) -> None:
         """Back to rest, in place."""
-        self.state.buf[:] = 0.0
-        self.state.pos[0] = 0
+        rest_in_place(self.state)
 
 
 def ring_convolver(g: np.ndarray) -> RingConvolver:

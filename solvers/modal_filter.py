@@ -8,6 +8,8 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
+from .convolution import at_rest, rest_in_place
+
 
 def modal_impulse(t, f_r: float, zeta: float) -> np.ndarray:
     """h(t) = exp(-sigma t) sinh(mu t) / mu of one mode per unit modal mass
@@ -80,12 +82,11 @@ class ModalFilter(NamedTuple):
 
     def reset(self) -> None:
         """Back to rest, in place."""
-        for x in self.state:
-            x[...] = 0.0
+        rest_in_place(self.state)
 
     def fresh(self) -> "ModalFilter":
         """The same filter with a state of its own, at rest."""
-        return self._replace(state=FilterState(*(np.zeros_like(x) for x in self.state)))
+        return self._replace(state=at_rest(self.state))
 
     def copy(self) -> "ModalFilter":
         """The same filter with a copy of the current state."""

@@ -36,6 +36,8 @@ import numba
 import numpy as np
 import rocket_fft  # noqa: F401  (registers numpy.fft for numba)
 
+from .convolution import at_rest, rest_in_place
+
 DEFAULT_BLOCK = 128
 
 
@@ -77,12 +79,11 @@ class PartitionedConvolver(NamedTuple):
 
     def reset(self) -> None:
         """Back to rest, in place."""
-        for a in self.state:
-            a[...] = 0
+        rest_in_place(self.state)
 
     def fresh(self) -> "PartitionedConvolver":
         """The same convolver with a state of its own, at rest."""
-        return self._replace(state=PartitionedState(*(np.zeros_like(a) for a in self.state)))
+        return self._replace(state=at_rest(self.state))
 
     def response(self, F: np.ndarray) -> np.ndarray:
         """Whole history from rest (own state untouched): xi (nt, 2), xi[0] = 0."""

@@ -27,30 +27,37 @@ log = logging.getLogger("pipeline.stability")
 COLUMNS = ["case", "dy_wr", "gamma_y", "mu", "sigma_max", "f_max", "label_max", "sigma_lf", "label_na", "sigma_na"]
 
 
-def screen_rows(case: str, gammas, mus) -> list[dict]:
-    """The screen at every (gamma_y, mu) of one case's position."""
+def grid_roots(lm0, con, v: float, gammas, mus, mu_lm0: float | None = None):
+    """Yield (mu, gamma_y, roots) of the screen at every (gamma_y, mu): one ``Basis`` of ``lm0``'s
+    structures, one linearisation per mu (``lm0`` itself at ``mu_lm0``), the operating point per
+    creepage.  ``con``: the contact artifact's arrays; v: rolling speed (m/s)."""
     from solvers.interaction import contact_model
     from solvers.stability import Basis, linearise, operating_point, screen
 
+    basis = Basis(lm0)
+    for mu in mus:
+        cm = contact_model(con, float(mu))
+        lm_mu = lm0 if mu == mu_lm0 else linearise(
+            _wheel(lm0), lm0.rail_kernel, cm, dt=lm0.dt, v=v, gamma_y=float(gammas[0]), preload=lm0.F3)
+        for gy in gammas:
+            yield float(mu), float(gy), screen(operating_point(lm_mu, cm, v=v, gamma_y=float(gy)), basis, polish=False)
+
+
+def screen_rows(case: str, gammas, mus) -> list[dict]:
+    """The screen at every (gamma_y, mu) of one case's position."""
     from ..stability_stage import case_linear_model
 
     c, lm0, labels, _ = case_linear_model(case)
     con, _ = artifacts.load_npz(paths.case_dir(case) / "contact.npz", "contact")
-    basis = Basis(lm0)
-    v, rows = c["kinematics"]["speed"], []
-    for mu in mus:
-        cm = contact_model(con, float(mu))
-        lm_mu = lm0 if mu == c["friction"]["mu"] else linearise(
-            _wheel(lm0), lm0.rail_kernel, cm, dt=lm0.dt, v=v, gamma_y=float(gammas[0]), preload=lm0.F3)
-        for gy in gammas:
-            roots = screen(operating_point(lm_mu, cm, v=v, gamma_y=float(gy)), basis, polish=False)
-            lab = lambda r: "track" if r.mode < 0 else str(labels[r.mode])              # noqa: E731
-            lf = [r for r in roots if r.mode < 0]
-            na = [r for r in roots if r.mode >= 0 and lab(r).endswith(",0,a)")]
-            rows.append({"case": case, "dy_wr": c["contact"]["dy_wr"], "gamma_y": float(gy), "mu": float(mu),
-                         "sigma_max": roots[0].sigma, "f_max": roots[0].f_hz, "label_max": lab(roots[0]),
-                         "sigma_lf": lf[0].sigma if lf else np.nan,
-                         "label_na": lab(na[0]) if na else "", "sigma_na": na[0].sigma if na else np.nan})
+    lab = lambda r: "track" if r.mode < 0 else str(labels[r.mode])                      # noqa: E731
+    rows = []
+    for mu, gy, roots in grid_roots(lm0, con, c["kinematics"]["speed"], gammas, mus, c["friction"]["mu"]):
+        lf = [r for r in roots if r.mode < 0]
+        na = [r for r in roots if r.mode >= 0 and lab(r).endswith(",0,a)")]
+        rows.append({"case": case, "dy_wr": c["contact"]["dy_wr"], "gamma_y": gy, "mu": mu,
+                     "sigma_max": roots[0].sigma, "f_max": roots[0].f_hz, "label_max": lab(roots[0]),
+                     "sigma_lf": lf[0].sigma if lf else np.nan,
+                     "label_na": lab(na[0]) if na else "", "sigma_na": na[0].sigma if na else np.nan})
     return rows
 
 
