@@ -101,9 +101,6 @@ def test_default_case_squeals_at_an_axial_mode(built):
     assert np.abs(f / np.outer(f_modes, [1, 2, 3]) - 1).min() < 0.01, (f, f_modes)
 
 
-@pytest.mark.xfail(strict=True, reason="issue 13 open: since the thesis' contact points are read with y^W "
-                   "flange-positive (the default point at y^W = +32 mm) the default case squeals at (0,0,a), "
-                   "335 Hz, still growing after 8 s (no limit cycle); the reference model squeals at (2,0,a)")
 def test_default_case_reaches_a_limit_cycle_at_a_mode_with_nodal_diameters(built):
     """Issue 7's statement: a limit cycle at an (n >= 2, 0, a) mode or one of its harmonics."""
     stop, L, f, f_modes = _default_result(built, 2)

@@ -92,9 +92,11 @@ def test_diagnosis_report():
             r, xr, xw = struct
             variants["lf"].append(f"| {dy} mm | {r.f_hz:.1f} Hz, {r.sigma:+.1f}/s | {1e9 * xr[0]:.1f} / {1e9 * xr[1]:.1f} "
                                   f"| {1e9 * xw[0]:.1f} / {1e9 * xw[1]:.1f} |")
-    # what the map shows is what the screen predicts: the LF root leads at -5 and -10 mm from mu = 0.15
-    assert all(fastest[(dy, mu)] == "LF" for dy in (-5, -10) for mu in MUS)
-    assert all(fastest[(-15, mu)] in ("(2,0,a)", "(3,0,a)") for mu in MUS)
+    # the reference's mode leads wherever the reference names one (thesis ch. 6): (2,0,a) at -5 mm up to
+    # mu = 0.45 (the low-frequency root above), (3,0,a) at -10 mm, (2,0,a) at -15 mm from mu = 0.3
+    assert all(fastest[(-5, mu)] == "(2,0,a)" for mu in MUS if mu <= 0.45) and fastest[(-5, 0.6)] == "LF"
+    assert all(fastest[(-10, mu)] == "(3,0,a)" for mu in MUS)
+    assert all(fastest[(-15, mu)] == "(2,0,a)" for mu in MUS if mu >= 0.3)
     text = f"""## Fidelity diagnosis: which mode grows at each contact position (issue 13)
 
 Test: `tests/stability/test_diagnosis_report.py` (validation suite). The stability screen
@@ -107,7 +109,17 @@ rate sigma (1/s) @ frequency (Hz) of every candidate, gamma_y = {GAMMA}, the cas
 
 {head}""" + "\n".join(base) + f"""
 
-**The 58-160 Hz oscillation of the map at -5 and -10 mm is the wheelset bouncing on the track,
+**Now** (the contact points read flange-positive, the worn profiles, the calibrated suspension damping and
+the C20 section fitted to the coupling zero points: "Calibration"), the fastest root is the reference's
+mode wherever the reference names one (asserted): (2,0,a) at -5 mm up to mu = 0.45 and the
+low-frequency root above it, (3,0,a) at -10 mm, (2,0,a) at -15 mm from mu = 0.3. The time-loop map
+("The map against the reference model's findings") agrees.
+
+### How it got there (diagnosis log)
+The rest of this section is the diagnosis made before those fixes, when the map oscillated at 58-160 Hz
+at -5 and -10 mm; its tables are recomputed on today's artifacts where the roots still exist.
+
+**The 58-160 Hz oscillation of the map at -5 and -10 mm was the wheelset bouncing on the track,
 destabilised by the RAIL's vertical-lateral cross receptance.** At its root (mu = 0.3) the displacements
 per unit dF3 (full slip, dF2 = mu dF3) are, in nm/N, lateral / vertical:
 
@@ -161,7 +173,8 @@ Findings (evidence above; what they mean for the model):
   wheel as fitted, -15 mm squeals only for mu >= 0.45 ((2,0,a)). The fix is therefore three steps that
   belong together: mirror y^W, refit the C20's web (its coupling ratios at the three corrected points)
   and calibrate the rail support's lateral/rocking stiffness, each by a script with its targets; then
-  the map. Not done in this change (see the issue's closing note).
+  the map. Done since: y^W mirrored ("Contact positions"), the C20 refitted to coupling zero points and
+  the suspension damping calibrated in place of the rail support's rocking stiffness ("Calibration").
 """
     DOCS.mkdir(parents=True, exist_ok=True)
     (DOCS / "65_fidelity_diagnosis.md").write_text(text)

@@ -1,9 +1,9 @@
 """The map study against the reference model's findings (issue 13): docs/validation/81_reference_behaviour.md,
 from the full map's table when it exists (build/studies/map/map.csv), else the quick map's.  The
 fragment states the measured behaviour; the assertions hold what the model already reproduces (the
-creepage threshold rises with friction at every position, only axial modes or the track root squeal);
-the reference's mode selection per position is issue 13's open target (docs/validation, "Fidelity
-diagnosis").
+creepage threshold rises with friction at every position, only axial modes or the track root squeal,
+the reference's mode in >= 80 % of the squealing cases at each position, squeal at low friction at
+-10 mm, low-frequency dominance only at -5 mm for mu >= 0.45); the L_W bands are reported.
 
     make study STUDY=map [QUICK=1]; .venv/bin/python -m pytest -q --validation tests/study/test_reference_behaviour.py
 """
@@ -59,6 +59,12 @@ def test_reference_behaviour():
     s5 = position_summary([r for r in rows if round(1e3 * r["dy_wr"]) == -5 and r["mu"] < 0.45], *m5)
     assert s5["modes"].get("(2,0,a)", 0) >= 0.8 * s5["squealing"], s5["modes"]
     assert all(mu >= 0.45 for s in summ.values() for mu in s["lf_mus"]), {d: s["lf_mus"] for d, s in summ.items()}
+    assert all(not s["lf_mus"] for d, s in summ.items() if d != -5), {d: s["lf_mus"] for d, s in summ.items()}
+    shares = {-5: s5["modes"].get("(2,0,a)", 0) / max(s5["squealing"], 1)}
+    for dy in (-10, -15):
+        shares[dy] = summ[dy]["modes"].get(REFERENCE[dy][0], 0) / max(summ[dy]["squealing"], 1)
+        assert shares[dy] >= 0.8, (dy, summ[dy]["modes"])
+    assert any(r["mu"] <= 0.2 and r["L_F2"] >= 10.0 for r in rows if round(1e3 * r["dy_wr"]) == -10)
     bands = []
     for dy, s in summ.items():
         lo, hi = REFERENCE[dy][2]
@@ -70,12 +76,13 @@ def test_reference_behaviour():
 Test: `tests/study/test_reference_behaviour.py` (validation suite), from `build/studies/{name}/map.csv`
 ({len(rows)} cases). A squeal's mode is the (n,m,c) whose eigenfrequency, 2nd or 3rd harmonic lies within 1 %
 of the dominant force frequency; below 200 Hz it is the track (the wheelset bouncing on the rail).
-This is where the model stands, not a pass mark. With the thesis' contact points read correctly
-(y^W flange-positive: -5, +4, +32 mm), the worn profiles and the calibrated vertical suspension
-damping ("Calibration" above) the -5 mm position behaves as the reference's; at -10 and -15 mm the
-C20 section's coupling is too strong for (3,0,a) at +4 mm and for (2,0,a) at +32 mm (the
-"Calibration" section gives the zero points that would reproduce them), so (2,0,a) shares -10 mm and
-(0,0,a) shares -15 mm, and nothing squeals at mu <= 0.2.
+With the thesis' contact points read correctly (y^W flange-positive: -5, +4, +32 mm), the worn
+profiles, the calibrated vertical suspension damping and the C20 section fitted to the coupling zero
+points ("Calibration" above), the reference's mode squeals in {100 * shares[-5]:.0f} % of the squealing
+cases at -5 mm (mu < 0.45), {100 * shares[-10]:.0f} % at -10 mm and {100 * shares[-15]:.0f} % at -15 mm
+(asserted: >= 80 %). The mode selection was targeted with the linear screen in full slip; this
+nonlinear time-loop map is its check. The L_W bands are not reproduced at -5 and -15 mm (below):
+the sound levels are a prediction, not a target.
 
 Share of the squealing cases in the reference's L_W band: {bands}.
 
