@@ -49,3 +49,19 @@ def filter_bank_levels(p_whole, fs, start_s: float, stop_s: float, f_range=(10.0
     nominal = pf.constants.fractional_octave_frequencies_nominal(3, f_range)
     with np.errstate(divide="ignore"):
         return nominal, 10 * np.log10(np.mean(seg**2, axis=-1) / P0**2)
+
+
+def filter_bank_from_lines(f, p2, fs, f_range=(10.0, 17000.0)):
+    """Band levels (dB re 20 uPa) the same pyfar filter bank gives for a line spectrum: each component's
+    mean square ``p2`` (Pa^2) at frequency ``f`` (Hz) weighted by every band filter's own |H_b(f)|^2
+    (scipy.signal.sosfreqz of its second-order sections).  Exact for the tones of a stationary signal,
+    so it carries the filters' skirts, which ideal band edges do not."""
+    import pyfar as pf
+    from scipy.signal import sosfreqz
+
+    sos = np.asarray(pf.dsp.filter.fractional_octave_bands(None, 3, sampling_rate=fs, frequency_range=f_range).coefficients)
+    f = np.asarray(f, float)
+    keep = (f > 0) & (f < fs / 2)
+    out = np.array([np.sum(np.abs(sosfreqz(b, worN=f[keep], fs=fs)[1]) ** 2 * np.asarray(p2)[keep]) for b in sos])
+    with np.errstate(divide="ignore"):
+        return 10 * np.log10(out / P0**2)
