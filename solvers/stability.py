@@ -14,12 +14,14 @@ but the friction curve and the NORM table, and those two are linearised:
   table at the static approach);
 * tangential point contact [4.25]-[4.31] with s2 < 0 (gamma_y < 0, F2 > 0):
   F2 = mu_RF(|s2|) F3, s2 = gamma_y v + (A2 (F2[n] - F2[n-1]) + xi2[n] - xi2[n-1]) / dt, so
-  dF2 = mu0 dF3 - q (A2 dF2 + dxi2) with q = F3 mu_RF'(s0) (1 - z^-1) / dt
-  (mu0 = mu_RF(s0), s0 = |gamma_y| v; in full slip mu_RF' = 0 and dF2 = mu0 dF3).
+  dF2 = mu0 dF3 - q (A2 dF2 + F2 A2' dF3 / k_c + dxi2) with q = F3 mu_RF'(s0) (1 - z^-1) / dt
+  (mu0 = mu_RF(s0), s0 = |gamma_y| v; in full slip mu_RF' = 0 and dF2 = mu0 dF3); the time loop's
+  compliance A2 follows the approach (the patch grows with F3), hence the A2' = dA2/d approach term
+  with F2 = mu0 F3.
 
 So M(z) dF = 0 with
 
-    M = [[1 + q A2 + q Y22,   -mu0 + q Y23],
+    M = [[1 + q A2 + q Y22,   -mu0 + q (Y23 + mu0 F3 A2' / k_c)],
          [k_c Y32,             1 + k_c Y33 ]]
 
 and the closed-loop poles are the roots z = exp(s dt) of D(s) = det M.  In full
@@ -59,6 +61,7 @@ class LinearModel(NamedTuple):
     dmu: float               # d mu_RF / d s at the operating slip (s/m)
     F3: float                # preload (N)
     A2: float                # lateral tangential compliance (m/N)
+    dA2: float = 0.0         # d A2 / d approach at the static approach (1/N): the patch grows with F3
 
 
 class Root(NamedTuple):
@@ -121,7 +124,7 @@ def _det(model, Y: np.ndarray, z, scale=1.0):
     det(c M) = c^2 D."""
     q = model.F3 * model.dmu * (1.0 - 1.0 / z) / model.dt
     M00 = scale * (1.0 + q * model.A2) + q * Y[..., 0, 0]
-    M01 = -model.mu0 * scale + q * Y[..., 0, 1]
+    M01 = (-model.mu0 + q * model.mu0 * model.F3 * model.dA2 / model.kc) * scale + q * Y[..., 0, 1]
     return M00 * (scale + model.kc * Y[..., 1, 1]) - M01 * model.kc * Y[..., 1, 0]
 
 
@@ -283,7 +286,10 @@ def linearise(wheel, rail_kernel: np.ndarray, contact, *, dt: float, v: float, g
     kc = (table_force(app + h, contact.xi3_nodes, contact.q_nodes)
           - table_force(app - h, contact.xi3_nodes, contact.q_nodes)) / (2 * h)
     A2 = table_compliance(app, contact.xi3_nodes, contact.A2_nodes)
+    dA2 = (table_compliance(app + h, contact.xi3_nodes, contact.A2_nodes)
+           - table_compliance(app - h, contact.xi3_nodes, contact.A2_nodes)) / (2 * h)
     base = LinearModel(np.asarray(wheel.f_r, float), np.asarray(wheel.modal_mass, float),
                        np.asarray(wheel.zeta, float), np.asarray(wheel.phi, float),
-                       np.asarray(rail_kernel, float), float(dt), float(kc), 0.0, 0.0, float(preload), float(A2))
+                       np.asarray(rail_kernel, float), float(dt), float(kc), 0.0, 0.0, float(preload), float(A2),
+                       float(dA2))
     return operating_point(base, contact, v=v, gamma_y=gamma_y)

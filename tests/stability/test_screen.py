@@ -55,11 +55,12 @@ def test_one_mode_limit_is_the_closed_form():
 
 @pytest.fixture(scope="module")
 def squealer_run():
-    """The reduced squealer (C20 (2,0,a) + (3,0,a) at y^W = -32 mm on the beam rail, the analytic
+    """The reduced squealer (C20 (2,0,a) + (3,0,a) at y^W = -5 mm on the beam rail, the analytic
     Hertzian contact table) in the time loop, its growth phase measured.  (With the default case's
-    worn-profile contact table the time loop's (2,0,a) grows at 9.73/s against the screen's 8.29/s,
-    a difference not explained yet: the screen's root is insensitive to k_c, A2 and the friction
-    slope there; noted in issue 13.)"""
+    worn-profile contact table the time loop's (2,0,a) does not grow at one rate -- 6.7/s measured
+    from 0.05 s, 0.7/s from 0.15 s -- against the screen's 11.5/s, while (3,0,a) grows at 17.0 against
+    19.6/s: not explained yet; the screen's A2' term (the compliance following the approach) is
+    included and negligible there.)"""
     wheel, g = reduced_squealer(DT)
     c = hertz_contact(0.35)
     r = simulate(wheel, g, c, dt=DT, v=V, gamma_y=GAMMA_Y, preload=PRELOAD, duration=0.45, stop=None, final=0.45)
@@ -78,11 +79,11 @@ def test_screen_growth_rates_match_the_time_loop(squealer_run):
 
 def test_shared_basis_roots_match_the_exact_roots(squealer_run):
     """The first-order expansion of the rest of Y about each pole (maps) against the exact roots:
-    the unstable poles agree to 1e-3 1/s and 1e-3 Hz."""
+    the unstable poles agree to 2e-4 of their growth rate and 1e-3 Hz."""
     wheel, g, c, _ = squealer_run
     lm = linearise(wheel, g, c, dt=DT, v=V, gamma_y=GAMMA_Y, preload=PRELOAD)
     b = Basis(lm)
     exact = {r.mode: r for r in screen(lm, b)}
     for r in screen(lm, b, polish=False):
         if r.mode >= 0 and r.sigma > 0:
-            assert abs(r.sigma - exact[r.mode].sigma) < 1e-3 and abs(r.f_hz - exact[r.mode].f_hz) < 1e-3
+            assert abs(r.sigma - exact[r.mode].sigma) < 2e-4 * abs(r.sigma) and abs(r.f_hz - exact[r.mode].f_hz) < 1e-3
