@@ -78,6 +78,11 @@ def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool 
     from .context import load_context
     from .worker import map_case
 
+    gammas, mus = grid_of(spec, quick)
+    table_file = out / "table.csv"
+    rows = sum(1 for _ in open(table_file)) - 1 if table_file.exists() else 0
+    if rows < len(gammas) * len(mus) * len(spec["cases"]):
+        client.start()                               # cases to run: the cluster starts while their data load
     contexts = {case: load_context(case) for case in spec["cases"]}
     tasks = tasks_of(spec, src, contexts, quick)
     table = ResultsTable(out / "table.csv", COLUMNS)

@@ -19,6 +19,7 @@ import fcntl
 import json
 import logging
 import os
+import threading
 import time
 import tomllib
 from pathlib import Path
@@ -65,8 +66,28 @@ class LazyClient:
         self.scheduler, self.workers = scheduler, workers
         self._stack = contextlib.ExitStack()
         self._client = None
+        self._starting = None
+
+    def start(self) -> None:
+        """Start the cluster in a background thread (while the caller loads the cases' data);
+        ``get`` waits for it.  A start that fails is retried (and its error raised) by ``get``."""
+        if self._client is None and self._starting is None:
+            self._starting = threading.Thread(target=self._start_quietly, daemon=True)
+            self._starting.start()
+
+    def _start_quietly(self) -> None:
+        try:
+            self._connect()
+        except Exception as e:                       # noqa: BLE001 - get() starts again and raises
+            log.debug("dask: background start failed (%s); retrying in the foreground", e)
 
     def get(self):
+        if self._starting is not None:
+            self._starting.join()
+            self._starting = None
+        return self._connect()
+
+    def _connect(self):
         if self._client is None:
             from .runner import study_client
 
@@ -78,6 +99,9 @@ class LazyClient:
         return self._client
 
     def close(self):
+        if self._starting is not None:
+            self._starting.join()
+            self._starting = None
         self._stack.close()
         self._client = None
 
