@@ -109,10 +109,16 @@ $(R)/rail.npz: $(RFILE) $(DEPS_rail) | $(STAMP)
 $(C)/contact.npz: $(CFILE) $(WFILE) $(RFILE) $(PROFILES) $(DEPS_contact) | $(STAMP)
 	$(PY) -m pipeline contact --case $(CASE)
 
-$(C)/greens.npz: $(CFILE) $(WFILE) $(RFILE) $(PROFILES) $(W)/modes.npz $(R)/rail.npz $(DEPS_greens) | $(STAMP)
+# numba's compiled code of the greens and simulate stages, made while the rail and wheel stages run (pipeline/warm.py;
+# once per build folder: a stage whose code changed since compiles for itself, as without it)
+JIT := $(BUILD)/.numba-warm
+$(JIT): | $(STAMP)
+	$(PY) -m pipeline.warm && touch $@
+
+$(C)/greens.npz: $(CFILE) $(WFILE) $(RFILE) $(PROFILES) $(W)/modes.npz $(R)/rail.npz $(DEPS_greens) | $(STAMP) $(JIT)
 	$(PY) -m pipeline greens --case $(CASE)
 
-$(C)/simulate.npz: $(CFILE) $(WFILE) $(RFILE) $(C)/contact.npz $(C)/greens.npz $(DEPS_simulate) | $(STAMP)
+$(C)/simulate.npz: $(CFILE) $(WFILE) $(RFILE) $(C)/contact.npz $(C)/greens.npz $(DEPS_simulate) | $(STAMP) $(JIT)
 	$(PY) -m pipeline simulate --case $(CASE)
 
 $(C)/radiate.npz: $(CFILE) $(WFILE) $(RFILE) $(PROFILES) $(W)/modes.npz $(C)/simulate.npz $(DEPS_radiate) | $(STAMP)
