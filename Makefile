@@ -109,13 +109,14 @@ $(R)/rail.npz: $(RFILE) $(DEPS_rail) | $(STAMP)
 $(C)/contact.npz: $(CFILE) $(WFILE) $(RFILE) $(PROFILES) $(DEPS_contact) | $(STAMP)
 	$(PY) -m pipeline contact --case $(CASE)
 
-# numba's compiled code of the greens and simulate stages, made while the rail and wheel stages run (pipeline/warm.py;
-# once per build folder: a stage whose code changed since compiles for itself, as without it)
+# numba's compiled code of the simulate stage, made while the rail stage runs (pipeline/warm.py; once per build
+# folder: a stage whose code changed since compiles for itself, as without it); after the wheel modes, so that with
+# parallel jobs it never holds up the greens stage's inputs
 JIT := $(BUILD)/.numba-warm
-$(JIT): | $(STAMP)
+$(JIT): | $(STAMP) $(W)/modes.npz
 	$(PY) -m pipeline.warm && touch $@
 
-$(C)/greens.npz: $(CFILE) $(WFILE) $(RFILE) $(PROFILES) $(W)/modes.npz $(R)/rail.npz $(DEPS_greens) | $(STAMP) $(JIT)
+$(C)/greens.npz: $(CFILE) $(WFILE) $(RFILE) $(PROFILES) $(W)/modes.npz $(R)/rail.npz $(DEPS_greens) | $(STAMP)
 	$(PY) -m pipeline greens --case $(CASE)
 
 $(C)/simulate.npz: $(CFILE) $(WFILE) $(RFILE) $(C)/contact.npz $(C)/greens.npz $(DEPS_simulate) | $(STAMP) $(JIT)

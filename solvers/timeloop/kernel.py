@@ -9,7 +9,7 @@ import numba
 import numpy as np
 
 from ..contact.compliance import table_compliance
-from ..contact.friction import mu_and_slope, mu_rf
+from ..contact.friction import mu_and_slope
 from ..contact.norm import table_force
 from ..modal_filter import filter_step
 from ..partitioned import partitioned_step
