@@ -36,12 +36,11 @@ def previous(package: str, module: str | None = None):
         atexit.register(shutil.rmtree, _DIR[0], True)
     root = _DIR[0]
     try:
-        tar = subprocess.run(["git", "-C", str(ROOT), "archive", BASELINE, package], check=True,
-                             capture_output=True).stdout
+        tar = subprocess.run(["git", "-C", str(ROOT), "archive", f"--prefix={name}/", f"{BASELINE}:{package}"],
+                             check=True, capture_output=True).stdout
         subprocess.run(["tar", "-x", "-C", str(root)], input=tar, check=True, capture_output=True)
     except (OSError, subprocess.CalledProcessError):
         return None
-    (root / package).rename(root / name)
     if str(root) not in sys.path:
         sys.path.insert(0, str(root))
     importlib.import_module(name)

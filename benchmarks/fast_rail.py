@@ -82,7 +82,7 @@ def _kernels(rows: list) -> None:
         e_prev = np.abs(g_new - g_prev).max() / np.abs(g_prev).max()
         prev = [f"| moving kernel, {RAIL_LAGS} lags: the previous wave-table loop ({BASELINE}: four complex powers "
                 f"per wave, array of structures) | {t_prev:.2f} s | {t_old / t_prev:.0f}x |",
-                f"| difference now - previous, max / max \|g\| | {e_prev:.1e} | |"]
+                f"| difference now - previous, max / max \\|g\\| | {e_prev:.1e} | |"]
     rows += [f"| BV50 waveguide model (reduced wave families; dolfinx assembly, SLEPc basis) | {t_model:.1f} s | |",
              f"| wave table on Kropp's grid, {nf} frequencies x {M} waves, 1 thread | {t_tab1:.1f} s | |",
              f"| same, 2 threads (frequency halves) | {t_tab2:.1f} s | {t_tab1 / t_tab2:.2f}x |",
