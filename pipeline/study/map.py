@@ -79,9 +79,11 @@ def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool 
     from .worker import map_case
 
     gammas, mus = grid_of(spec, quick)
-    table_file = out / "table.csv"
-    rows = sum(1 for _ in open(table_file)) - 1 if table_file.exists() else 0
-    if rows < len(gammas) * len(mus) * len(spec["cases"]):
+    lines = 0                                        # the table's lines so far (a header and a row per case)
+    if (out / "table.csv").exists():
+        with open(out / "table.csv") as fh:
+            lines = sum(1 for _ in fh)
+    if lines - 1 < len(gammas) * len(mus) * len(spec["cases"]):
         client.start()                               # cases to run: the cluster starts while their data load
     contexts = {case: load_context(case) for case in spec["cases"]}
     tasks = tasks_of(spec, src, contexts, quick)
