@@ -55,6 +55,11 @@ $(DEPS_MK): $(PKG_PY)
 	$(DEPS_PY) pipeline/deps.py > $@.tmp && mv $@.tmp $@ || { rm -f $@.tmp; exit 1; }
 
 .DEFAULT_GOAL := all
+# `make` (the default case) runs independent stages side by side, one job per core (wheel modes and
+# renders, contact next to the rail); other goals keep the command line's -j
+ifeq ($(filter-out all report,$(or $(MAKECMDGOALS),all)),)
+  MAKEFLAGS += -j$(shell nproc 2>/dev/null || echo 1)
+endif
 .PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate stability stability-map listen report study check calibrate calibrate-profiles calibrate-coupling calibrate-wheel calibrate-suspension clean distclean FORCE
 .DELETE_ON_ERROR:
 
@@ -74,9 +79,11 @@ help: ## list the targets
 	fi
 	@touch $@
 
+# the venv uses Debian's pip (python3-pip, seen through --system-site-packages: no ensurepip copy) and
+# installs without byte-compiling every file (Python compiles what is imported, when it is: ~half the time)
 $(STAMP): requirements.txt constraints.txt .apt-stamp
-	@test -x $(PY) || /usr/bin/python3 -m venv --system-site-packages .venv
-	$(PY) -m pip install -q --disable-pip-version-check -c constraints.txt -r requirements.txt
+	@test -x $(PY) || /usr/bin/python3 -m venv --system-site-packages --without-pip .venv
+	$(PY) -m pip install -q --no-compile --disable-pip-version-check -c constraints.txt -r requirements.txt
 	$(PY) -c "import dolfinx, slepc4py, gmsh, numba, rocket_fft, pyvista, numpy, dask, distributed, pydantic; assert numpy.__version__.startswith('1.24'), numpy.__version__"
 	@touch $@
 
@@ -102,10 +109,17 @@ $(R)/rail.npz: $(RFILE) $(DEPS_rail) | $(STAMP)
 $(C)/contact.npz: $(CFILE) $(WFILE) $(RFILE) $(PROFILES) $(DEPS_contact) | $(STAMP)
 	$(PY) -m pipeline contact --case $(CASE)
 
+# numba's compiled code of the simulate stage, made while the rail stage runs (pipeline/warm.py; once per build
+# folder: a stage whose code changed since compiles for itself, as without it); after the wheel modes, so that with
+# parallel jobs it never holds up the greens stage's inputs
+JIT := $(BUILD)/.numba-warm
+$(JIT): | $(STAMP) $(W)/modes.npz
+	$(PY) -m pipeline.warm && touch $@
+
 $(C)/greens.npz: $(CFILE) $(WFILE) $(RFILE) $(PROFILES) $(W)/modes.npz $(R)/rail.npz $(DEPS_greens) | $(STAMP)
 	$(PY) -m pipeline greens --case $(CASE)
 
-$(C)/simulate.npz: $(CFILE) $(WFILE) $(RFILE) $(C)/contact.npz $(C)/greens.npz $(DEPS_simulate) | $(STAMP)
+$(C)/simulate.npz: $(CFILE) $(WFILE) $(RFILE) $(C)/contact.npz $(C)/greens.npz $(DEPS_simulate) | $(STAMP) $(JIT)
 	$(PY) -m pipeline simulate --case $(CASE)
 
 $(C)/radiate.npz: $(CFILE) $(WFILE) $(RFILE) $(PROFILES) $(W)/modes.npz $(C)/simulate.npz $(DEPS_radiate) | $(STAMP)

@@ -276,8 +276,15 @@ def load_geometry(path, schema: Mapping, check, what: str, available: Sequence[s
     if not os.path.exists(path):
         raise ConfigError(str(path), detail=f"no such {what}; available: {list(available)}")
     params = load(path, schema)
+    key = (getattr(check, "__module__", ""), getattr(check, "__qualname__", repr(check)), config_hash(params))
+    if key in _CHECKED:                 # the same parameters passed this check before in this process
+        return params
     try:
         check(params)
     except GeometryError as e:
         raise ConfigError(str(path), [(e.key, e.value, e.allowed)]) from None
+    _CHECKED.add(key)
     return params
+
+
+_CHECKED: set = set()   # load_geometry: (check, parameters' hash) that passed (a study asks ~10 times per case)

@@ -200,10 +200,18 @@ def refine_frequency(x, dt: float, f_est: float, half_width: float, steps: int =
     half_width shrinking 4-fold per step (the main lobe is smooth and unimodal)."""
     x = np.asarray(x, float)
     wx = window_samples("hann", x.size) * (x - x.mean())
-    t = np.arange(x.size) * dt
+    # the DTFT as a two-level sum, n = a B + b: sum_a exp(-i th B a) sum_b wx[a B + b] exp(-i th b),
+    # 2 sqrt(N) exponentials per frequency instead of N (the same sum to rounding)
+    B = max(1, int(np.sqrt(x.size)))
+    A = -(-x.size // B)
+    wxb = np.zeros(A * B)
+    wxb[:x.size] = wx
+    wxb = wxb.reshape(A, B)
+    a_idx, b_idx = np.arange(A) * B, np.arange(B)
 
     def g(f):
-        return np.log(max(abs(wx @ np.exp(-2j * np.pi * f * t)), np.finfo(float).tiny))
+        th = -2j * np.pi * f * dt
+        return np.log(max(abs(np.exp(th * a_idx) @ (wxb @ np.exp(th * b_idx))), np.finfo(float).tiny))
 
     f, h = float(f_est), float(half_width)
     b = g(f)
@@ -219,17 +227,48 @@ def refine_frequency(x, dt: float, f_est: float, half_width: float, steps: int =
     return f
 
 
+def _hann_sum(theta, N: int):
+    """Z(theta) = sum_{n<N} w_n exp(i theta n) of the periodic Hann window w_n = 1/2 - 1/2 cos(2 pi n/N)
+    (``window_samples``) in closed form: Dirichlet kernels D(theta) = sum_{n<N} exp(i theta n)
+    = exp(i theta (N-1)/2) sin(N theta/2) / sin(theta/2) (N at theta = 0), Z = D(theta)/2 -
+    (D(theta + 2 pi/N) + D(theta - 2 pi/N))/4.  For |theta| < 2 pi - 2 pi/N."""
+    theta = np.asarray(theta, float)
+
+    def dirichlet(a):
+        s = np.sin(0.5 * a)
+        zero = s == 0.0
+        r = np.sin(0.5 * N * a) / np.where(zero, 1.0, s)
+        return np.where(zero, float(N), r) * np.exp(0.5j * (N - 1) * a)
+
+    phi = 2 * np.pi / N
+    return 0.5 * dirichlet(theta) - 0.25 * (dirichlet(theta + phi) + dirichlet(theta - phi))
+
+
 def _fit_tones(X, w, t, freqs):
     """Hann-weighted least squares of the columns of X (N, 2) on cos/sin at ``freqs``;
-    returns (complex RMS amplitudes (T, 2), the fitted signal (N, 2))."""
+    returns (complex RMS amplitudes (T, 2), the fitted signal (N, 2)).  ``w``: the periodic Hann
+    window (``window_samples('hann', N)``), ``t`` = n dt.  The normal equations' matrix
+    D^T W D is summed in closed form (``_hann_sum`` of the sum and difference phases: products of
+    cos/sin are cos/sin of sums and differences), not over the N samples."""
     if len(freqs) == 0:
         return np.zeros((0, 2), complex), np.zeros_like(X)
-    ph = 2 * np.pi * np.outer(t, freqs)
-    D = np.hstack([np.cos(ph), np.sin(ph)])
-    Dw = D * w[:, None]
-    # normal equations: tones >= 2 bins apart are nearly orthogonal under the Hann weight
-    c = np.linalg.solve(Dw.T @ D, Dw.T @ X)
+    N = len(t)
     T = len(freqs)
+    dt = t[1] - t[0] if N > 1 else 1.0
+    ph = 2 * np.pi * np.outer(t, freqs)
+    D = np.empty((N, 2 * T))
+    np.cos(ph, out=D[:, :T])
+    np.sin(ph, out=D[:, T:])
+    th = 2 * np.pi * dt * np.asarray(freqs, float)          # phase per sample of each tone
+    Zd = _hann_sum(th[:, None] - th[None, :], N)
+    Zs = _hann_sum(th[:, None] + th[None, :], N)
+    G = np.empty((2 * T, 2 * T))
+    G[:T, :T] = 0.5 * (Zd.real + Zs.real)                   # sum w cos_a cos_b
+    G[T:, T:] = 0.5 * (Zd.real - Zs.real)                   # sum w sin_a sin_b
+    G[:T, T:] = 0.5 * (Zs.imag - Zd.imag)                   # sum w cos_a sin_b
+    G[T:, :T] = G[:T, T:].T
+    # normal equations: tones >= 2 bins apart are nearly orthogonal under the Hann weight
+    c = np.linalg.solve(G, D.T @ (X * w[:, None]))
     amp = (c[:T] - 1j * c[T:]) / np.sqrt(2)  # a cos + b sin = Re((a - i b) e^{i w t}); RMS = peak / sqrt 2
     return amp, D @ c
 

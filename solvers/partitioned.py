@@ -216,12 +216,12 @@ def partitioned_step(pc, F2, F3):
     ctr[1] = p + 1 if p + 1 < B else 0
     n1 = n + 1
     ctr[0] = n1
-    if H.shape[0] > 0:
-        r = n % B
+    if H.shape[0] > 0:                               # B is a power of two here: n % B = n & (B - 1)
+        r = n & (B - 1)
         seg[B + r] = F2 + 1j * F3
         if r == B - 1:                               # input block complete: tails of the next block
             _next_block(pc)
-        r1 = n1 % B
+        r1 = n1 & (B - 1)
         x2 += tail[r1, 0]
         x3 += tail[r1, 1]
     return x2, x3

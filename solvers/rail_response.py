@@ -122,9 +122,11 @@ def evaluate_table(table: dict, distances, block: int = 32) -> np.ndarray:
     K, a = table["k"], table["a"]
     nf, M, npt = a.shape[:3]
     G = np.empty((npt, len(x), nf, 2, 2), complex)
+    a2 = a.reshape(nf, M, npt * 4).transpose(0, 2, 1)               # (nf, np*4, M)
     for s in range(0, nf, block):
         e = np.exp(-1j * K[s:s + block, :, None] * x[None, None, :])  # (b, M, nx)
-        G[:, :, s:s + block] = np.einsum("fnpij,fnx->pxfij", a[s:s + block], e, optimize=True)
+        r = np.matmul(a2[s:s + block], e)                             # (b, np*4, nx): one product per f
+        G[:, :, s:s + block] = r.reshape(-1, npt, 2, 2, len(x)).transpose(1, 4, 0, 2, 3)
     return G
 
 

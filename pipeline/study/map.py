@@ -78,6 +78,13 @@ def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool 
     from .context import load_context
     from .worker import map_case
 
+    gammas, mus = grid_of(spec, quick)
+    lines = 0                                        # the table's lines so far (a header and a row per case)
+    if (out / "table.csv").exists():
+        with open(out / "table.csv") as fh:
+            lines = sum(1 for _ in fh)
+    if lines - 1 < len(gammas) * len(mus) * len(spec["cases"]):
+        client.start()                               # cases to run: the cluster starts while their data load
     contexts = {case: load_context(case) for case in spec["cases"]}
     tasks = tasks_of(spec, src, contexts, quick)
     table = ResultsTable(out / "table.csv", COLUMNS)

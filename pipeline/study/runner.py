@@ -49,20 +49,30 @@ class RunStats:
     workers: int = 0
 
 
-@contextlib.contextmanager
-def study_client(scheduler: str | None = None, workers: int | None = None) -> Iterator[Any]:
-    """A dask.distributed Client: of the scheduler at ``scheduler``, else of a local cluster of
-    ``workers`` (default: the machine's cores) single-threaded worker processes."""
-    from distributed import Client, LocalCluster
+def local_cluster(workers: int | None = None):
+    """A started local cluster of ``workers`` (default: the machine's cores) single-threaded
+    worker processes (close it, or enter it in ``study_client``, which closes it)."""
+    from distributed import LocalCluster
 
     logging.getLogger("distributed").setLevel(logging.WARNING)    # the scheduler runs in this process
+    n = workers or os.cpu_count() or 1
+    return LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+                        silence_logs=logging.ERROR, env={"OMP_NUM_THREADS": "1"})
+
+
+@contextlib.contextmanager
+def study_client(scheduler: str | None = None, workers: int | None = None, cluster=None) -> Iterator[Any]:
+    """A dask.distributed Client: of the scheduler at ``scheduler``, else of ``cluster`` (one of
+    ``local_cluster``, e.g. started ahead in another thread) or a new local cluster; the local
+    cluster is closed on exit."""
+    from distributed import Client
+
+    logging.getLogger("distributed").setLevel(logging.WARNING)
     if scheduler:
         with Client(scheduler) as client:
             yield client
         return
-    n = workers or os.cpu_count() or 1
-    with LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
-                      silence_logs=logging.ERROR, env={"OMP_NUM_THREADS": "1"}) as cluster, Client(cluster) as client:
+    with (cluster if cluster is not None else local_cluster(workers)) as cl, Client(cl) as client:
         yield client
 
 

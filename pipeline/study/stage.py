@@ -19,6 +19,7 @@ import fcntl
 import json
 import logging
 import os
+import threading
 import time
 import tomllib
 from pathlib import Path
@@ -59,25 +60,56 @@ def load_study(name: str) -> tuple[dict, str]:
 
 
 class LazyClient:
-    """A Dask client made on first use (a finished study starts no cluster)."""
+    """A Dask client made on first use (a finished study starts no cluster), or started ahead by ``start``."""
 
     def __init__(self, scheduler: str | None, workers: int | None):
         self.scheduler, self.workers = scheduler, workers
         self._stack = contextlib.ExitStack()
         self._client = None
+        self._starting = None
+        self._cluster = None                         # started by start(), not yet connected
+
+    def start(self) -> None:
+        """Start the local cluster's worker processes in a background thread (while the caller
+        loads the cases' data); ``get`` connects to it (in the caller's thread: a Client is tied
+        to the context it was made in).  A start that fails is made again (and its error raised)
+        by ``get``."""
+        if self._client is None and self._starting is None and not self.scheduler:
+            self._t0 = time.perf_counter()
+            self._starting = threading.Thread(target=self._start_quietly, daemon=True)
+            self._starting.start()
+
+    def _start_quietly(self) -> None:
+        from .runner import local_cluster
+
+        try:
+            self._cluster = local_cluster(self.workers)
+        except Exception as e:                       # noqa: BLE001 - get() starts again and raises
+            log.debug("dask: background start failed (%s); starting in the foreground", e)
+
+    def _join(self) -> None:
+        if self._starting is not None:
+            self._starting.join()
+            self._starting = None
 
     def get(self):
+        self._join()
         if self._client is None:
             from .runner import study_client
 
-            t0 = time.perf_counter()
-            self._client = self._stack.enter_context(study_client(self.scheduler, self.workers))
+            t0 = getattr(self, "_t0", None) or time.perf_counter()
+            cluster, self._cluster = self._cluster, None
+            self._client = self._stack.enter_context(study_client(self.scheduler, self.workers, cluster))
             n = len(self._client.scheduler_info().get("workers", {}))
             log.info("dask: %s with %d workers (%.1f s to start)", self.scheduler or "local cluster", n,
                      time.perf_counter() - t0)
         return self._client
 
     def close(self):
+        self._join()
+        if self._cluster is not None:                # started ahead but never used (nothing to run)
+            self._cluster.close()
+            self._cluster = None
         self._stack.close()
         self._client = None
 

@@ -9,7 +9,7 @@ import numba
 import numpy as np
 
 from ..contact.compliance import table_compliance
-from ..contact.friction import mu_and_slope, mu_rf
+from ..contact.friction import mu_and_slope
 from ..contact.norm import table_force
 from ..modal_filter import filter_step
 from ..partitioned import partitioned_step
@@ -26,17 +26,31 @@ def point_contact(b1, b2, c1, c2, F3, s_nodes, mu_nodes, slopes, eps, sigma0):
     (0 needs mu_RF(0) = 0).
     sigma0: a start value for |s| (the previous step's), ignored unless in (0, |b|).
     Returns F1, F2, s1, s2, |s|, Newton iterations, bisection fallbacks."""
-    bn = math.hypot(b1, b2)
+    F1, F2, s1, s2, sig, it, nb, m = _point_contact(b1, b2, c1, c2, F3, s_nodes, mu_nodes, slopes, eps, sigma0)
+    return F1, F2, s1, s2, sig, it, nb
+
+
+@numba.njit(cache=True, inline="always")
+def _point_contact(b1, b2, c1, c2, F3, s_nodes, mu_nodes, slopes, eps, sigma0):
+    """``point_contact`` plus mu_RF(|s|) at the solution (the loop's contact state).  Each Newton
+    step divides as little as it can (reciprocals reused: the step's latency is its divisions)."""
+    bn = math.hypot(b1, b2)                              # (b^2 would underflow for |b| < 1e-154)
     if bn == 0.0 or F3 <= 0.0:
-        return 0.0, 0.0, b1, b2, bn, 0, 0
+        return 0.0, 0.0, b1, b2, bn, 0, 0, mu_nodes[0]
+    ib = 1.0 / bn
     k1 = c1 * F3
     k2 = c2 * F3
-    e1 = b1 / bn
-    e2 = b2 / bn
+    e1 = b1 * ib
+    e2 = b2 * ib
+    q1 = e1 * e1                                          # e_tau^2, e = b / |b|
+    q2 = e2 * e2
+    kb1 = k1 * ib
+    kb2 = k2 * ib
+    ee = eps * eps
     # scaled unknown x = sigma / |b| in (0, 1]; H(x) = 1/sqrt(e1^2/d1^2 + e2^2/d2^2) - 1, d = D/|b|
     lo = 0.0
     hi = 1.0
-    x = sigma0 / bn
+    x = sigma0 * ib
     if not (0.0 < x < 1.0):
         x = 0.5
     it = 0
@@ -44,25 +58,29 @@ def point_contact(b1, b2, c1, c2, F3, s_nodes, mu_nodes, slopes, eps, sigma0):
     for it in range(1, 101):
         sig = x * bn
         m, dm = mu_and_slope(sig, s_nodes, mu_nodes, slopes)
-        r = math.hypot(sig, eps)
-        g = m * sig / r                                   # mu_RF(s) s / sqrt(s^2 + eps^2)
-        dg = dm * sig / r                                 # d g / d sigma
-        if eps > 0.0:
-            dg += m * (eps / r) * (eps / r) / r
-        d1 = x + k1 * g / bn
-        d2 = x + k2 * g / bn
-        dd1 = 1.0 + k1 * dg
-        dd2 = 1.0 + k2 * dg
-        N = (e1 / d1) ** 2 + (e2 / d2) ** 2
-        H = 1.0 / math.sqrt(N) - 1.0
+        if eps > 0.0:                                     # g = mu_RF(s) s / sqrt(s^2 + eps^2), dg = dg / dsigma
+            ir = 1.0 / math.sqrt(sig * sig + ee)
+            sr = sig * ir
+            g = m * sr
+            dg = dm * sr + m * ee * ir * ir * ir
+        else:                                             # sigma > 0: s / |s| = 1
+            g = m
+            dg = dm
+        i1 = 1.0 / (x + kb1 * g)                          # 1 / d_tau
+        i2 = 1.0 / (x + kb2 * g)
+        u1 = q1 * i1 * i1                                 # e_tau^2 / d_tau^2
+        u2 = q2 * i2 * i2
+        N = u1 + u2
+        rN = 1.0 / math.sqrt(N)
+        H = rN - 1.0
         if H == 0.0:
             break
         if H > 0.0:
             hi = x
         else:
             lo = x
-        dN = -2.0 * (e1 * e1 * dd1 / (d1 * d1 * d1) + e2 * e2 * dd2 / (d2 * d2 * d2))
-        dH = -0.5 * dN / (N * math.sqrt(N))
+        # dH/dx = -dN/dx / (2 N^1.5), dN/dx = -2 sum e^2 dd / d^3, dd = 1 + k dg
+        dH = (u1 * i1 * (1.0 + k1 * dg) + u2 * i2 * (1.0 + k2 * dg)) * rN / N
         xn = x - H / dH if dH > 0.0 else -1.0
         if not (lo < xn < hi):
             xn = 0.5 * (lo + hi)
@@ -72,13 +90,14 @@ def point_contact(b1, b2, c1, c2, F3, s_nodes, mu_nodes, slopes, eps, sigma0):
             break
         x = xn
     sig = x * bn
-    m = mu_rf(sig, s_nodes, mu_nodes, slopes)
-    r = math.hypot(sig, eps)
-    q = m / r if r > 0.0 else slopes[0]
+    m, dm = mu_and_slope(sig, s_nodes, mu_nodes, slopes)
+    if eps > 0.0:
+        q = m / math.sqrt(sig * sig + ee)
+    else:
+        q = m / sig if sig > 0.0 else slopes[0]
     s1 = b1 / (1.0 + k1 * q)
     s2 = b2 / (1.0 + k2 * q)
-    return -F3 * q * s1, -F3 * q * s2, s1, s2, math.hypot(s1, s2), it, nb
-
+    return -F3 * q * s1, -F3 * q * s2, s1, s2, math.hypot(s1, s2), it, nb, m
 
 
 @numba.njit(cache=True, inline="always")
@@ -128,6 +147,7 @@ def run_point(filt, rc, p, tab, rec, win):
     u1p = p.u_ref[0]
     u2p = p.u_ref[1]
     sig = 0.0
+    sig_old = 0.0
     mu_top = mu_nodes[mu_nodes.shape[0] - 1]
     row = np.zeros(8)
     ngx = gx.shape[0]
@@ -146,15 +166,17 @@ def run_point(filt, rc, p, tab, rec, win):
         if F3 > 0.0:
             A1 = table_compliance(app, xi3_nodes, A1_nodes)
             A2 = table_compliance(app, xi3_nodes, A2_nodes)
-            F1, F2, s1, s2, sig, it, nb = point_contact(b1, b2, A1 / dt, A2 / dt, F3, s_nodes, mu_nodes,
-                                                        slopes, eps, sig)
+            guess = 2.0 * sig - sig_old                 # |s| extrapolated from the last two steps
+            sig_old = sig
+            F1, F2, s1, s2, sig, it, nb, m = _point_contact(b1, b2, A1 / dt, A2 / dt, F3, s_nodes, mu_nodes,
+                                                            slopes, eps, guess)
             u1p = A1 * F1
             u2p = A2 * F2
             counters[0] += it
             if it > counters[1]:
                 counters[1] = it
             counters[2] += nb
-            state = 2.0 if mu_rf(sig, s_nodes, mu_nodes, slopes) >= FULL_SLIP * mu_top else 1.0
+            state = 2.0 if m >= FULL_SLIP * mu_top else 1.0
         else:                                   # loss of contact: no force, deformation released
             F1 = 0.0
             F2 = 0.0
