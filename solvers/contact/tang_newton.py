@@ -14,6 +14,8 @@ from .tang_kernels import (apply_step, gather_slip, jacobian_rows, lift, pcg_dir
 from .tang_operator import TangentialOperator, shifted_inverse
 from .tang_state import QUADRATIC, TOL
 
+CG_ABS = 0.03       # CG (transient) also stops when its last update is below CG_ABS tol x traction level
+
 
 # ----------------------------------------------------------------------------------------------
 # Krylov solvers (matrix-free, preconditioned)
@@ -175,26 +177,35 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
 
     q_vec, z_vec, d_vec = np.zeros((N, 2)), np.zeros((N, 2)), np.zeros((N, 2))
 
-    def pcg(b, rtol, kmax):
-        """J x = b by preconditioned CG (transient: J symmetric positive definite), fused kernels."""
+    def pcg(b, rtol, atol, kmax):
+        """J x = b by preconditioned CG (transient: J symmetric positive definite), fused kernels.
+        Stops at |r| <= rtol |b|, or when the last update max |alpha d| <= atol (the contraction
+        per step is about 1/4: the remaining error is then below atol).  Returns (x, steps,
+        error estimate: rtol max |x| or the last update)."""
         x = np.zeros((N, 2))
         rv = b.copy()
         bn2 = float((b * b).sum())
         if bn2 == 0.0:
-            return x, 0
+            return x, 0, 0.0
         four = inv_slip[0] is not None
         precondition_in(ix, iy, stick, t, sc, rv, False, four, grid4)
         Z = op.precondition(grid4, inv_stick[0], inv_slip[0])
         rz = pcg_direction(ix, iy, stick, t, sc, D, mdiag_s, Z, four, rv, z_vec, 0.0, d_vec, grid)
         for k in range(1, kmax + 1):
             U = op.displacements(grid)
+            rz_used = rz
             rr, dq = pcg_update(ix, iy, stick, t, D, U, False, scale, d_vec, q_vec, rz, x, rv, sc, four,
                                  grid4)
-            if dq <= 0.0 or rr <= rtol * rtol * bn2:
-                return x, k
+            if dq <= 0.0:
+                return x, k, 0.0
+            if rr <= rtol * rtol * bn2:
+                return x, k, rtol * float(np.abs(x).max())
+            step = rz_used / dq * float(np.abs(d_vec).max())
+            if step <= atol:
+                return x, k, step
             Z = op.precondition(grid4, inv_stick[0], inv_slip[0])
             rz = pcg_direction(ix, iy, stick, t, sc, D, mdiag_s, Z, four, rv, z_vec, rz, d_vec, grid)
-        return x, kmax
+        return x, kmax, math.inf
 
     if u_start is not None and not steady:
         gather_slip(ix, iy, u_start, False, r, s)
@@ -228,8 +239,9 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
             eta = eta_final
         if steady:
             dz, k = _gmres(J, Pinv, b, eta, 40)
-        else:
-            dz, k = pcg(b, eta, 200)
+            err = eta * float(np.abs(dz).max(initial=0.0))
+        else:   # absolute stop only where the step may be final (its error budget: 0.1 tol level)
+            dz, k, err = pcg(b, eta, CG_ABS * tol * p_level if n_changed <= few else 0.0, 200)
         krylov += k
         change = apply_step(stick, theta, g, dz, p, 0.5)
         ratio = change / max(r_max, 1e-300)
@@ -237,7 +249,7 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
         to_slip, to_stick = update_sets(stick, theta, g, p, s, 1e-9)
         p_level = max(float(np.abs(p).max(initial=0.0)), 1e-300)
         final = change <= tol * p_level or (not sets_changed and change <= q_lim * p_level
-                                            and eta * change <= 0.1 * tol * p_level)
+                                            and err <= 0.1 * tol * p_level)
         n_changed = to_slip + to_stick
         sets_changed = n_changed > 0
         if not sets_changed and final:
