@@ -14,7 +14,7 @@ from .tang_kernels import (apply_step, gather_slip, jacobian_rows, lift, pcg_dir
 from .tang_operator import TangentialOperator, shifted_inverse
 from .tang_state import QUADRATIC, TOL
 
-CG_ABS = 0.03       # CG (transient) also stops when its last update is below CG_ABS tol x traction level
+CG_ABS = 0.1        # CG (transient) also stops when its last update is below CG_ABS tol x traction level
 
 
 # ----------------------------------------------------------------------------------------------

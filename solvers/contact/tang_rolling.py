@@ -10,23 +10,19 @@ import numpy as np
 from .tang_newton import solve_coulomb
 from .tang_operator import tangential_operator
 from .tang_state import Rolling, TangentialContact, TangOptions, next_history
-from .tang_steps import on_grid, rigid_and_transport, start_values
+from .tang_steps import contact_elements, on_grid, rigid_and_transport, start_values
 
 
 _EMPTY = np.zeros((2, 0, 0))   # "no array" for the numba kernels
 PAD = 1                     # elements around the contact's bounding box when it outgrew the window
 
 
-def _window(contact, pad=PAD):
-    """Bounding box of the contact elements grown by `pad`, clipped to the grid: (i0, i1, j0, j1)
-    inclusive, or None without contact."""
-    rows = np.flatnonzero(contact.any(axis=1))
-    if rows.size == 0:
+def _grow(box, shape, pad):
+    """Bounding box (i0, i1, j0, j1) grown by `pad`, clipped to the grid; None without contact."""
+    if box[0] < 0:
         return None
-    cols = np.flatnonzero(contact.any(axis=0))
-    nx, ny = contact.shape
-    return (max(int(rows[0]) - pad, 0), min(int(rows[-1]) + pad, nx - 1),
-            max(int(cols[0]) - pad, 0), min(int(cols[-1]) + pad, ny - 1))
+    nx, ny = shape
+    return (max(box[0] - pad, 0), min(box[1] + pad, nx - 1), max(box[2] - pad, 0), min(box[3] + pad, ny - 1))
 
 
 def _inside(w, v):
@@ -45,15 +41,15 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
     nx, ny = shape
     contact = p3 > 0.0
     dt = dx / v
-    ix, iy = np.nonzero(contact)
+    ix, iy, box = contact_elements(p3)
     N = ix.size
-    win = _window(contact, 0)
+    win = _grow(box, shape, 0)
     if win is not None and warm is not None and warm.p1.shape == shape and warm.history is not None:
         # keep the previous step's window while the contact fits in it (a stable window keeps the
         # predictor's history and the operator); a contact that outgrew it gets PAD elements
         # around it (time loops with a breathing contact area)
         old = warm.history.window
-        padded = _window(contact, PAD)
+        padded = _grow(box, shape, PAD)
         if _inside(win, old) and (old[1] - old[0] + 1) * (old[3] - old[2] + 1) <= \
                 2 * (padded[1] - padded[0] + 1) * (padded[3] - padded[2] + 1):
             win = old

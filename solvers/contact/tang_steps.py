@@ -72,23 +72,62 @@ def differences(P, P_old, U, U_old, prev, n_prev):
     d[:, 0] = this step's change, d[:, m] = d[:, m - 1] - prev[:, m - 1] (prev: the previous
     step's differences (2, K, 2, nx, ny), n_prev of them valid; row 0 tractions, 1
     displacements).  The extrapolation of order m would have predicted this step with error
-    d[0, m]: the order with the smallest max |d[0, m]| is chosen.  Returns (d[:, :K], n valid,
-    order, prediction (2, 2, nx, ny) of the next change: the sum of the first `order` d)."""
+    d[0, m]: the order with the smallest max |d[0, m]| is chosen.  Returns (d (2, K, 2, nx, ny),
+    n valid, order, prediction (2, 2, nx, ny) of the next change: the sum of the first `order`
+    d)."""
     K = prev.shape[1]
-    d = np.empty((2, K + 1) + P.shape)
-    d[0, 0] = P - P_old
-    d[1, 0] = U - U_old
     n = min(n_prev, K) + 1
+    M = P.size
+    d = np.empty((2, K + 1, M))
+    pv = prev.reshape(2, K, -1) if n_prev > 0 else np.empty((2, K, 0))
+    cur = (P.ravel(), U.ravel())
+    old = (P_old.ravel(), U_old.ravel())
+    err = np.zeros(K + 1)
+    for a in range(2):
+        for i in range(M):
+            x = cur[a][i] - old[a][i]
+            d[a, 0, i] = x
+            if a == 0:
+                err[0] = max(err[0], abs(x))
+            for m in range(1, n):
+                x -= pv[a, m - 1, i]
+                d[a, m, i] = x
+                if a == 0:
+                    err[m] = max(err[m], abs(x))
+    order = 0
     for m in range(1, n):
-        d[:, m] = d[:, m - 1] - prev[:, m - 1]
-    best, order = math.inf, 0
-    for m in range(n):
-        e = np.abs(d[0, m]).max()
-        if e < best:
-            best, order = e, m
+        if err[m] < err[order]:
+            order = m
     if n == 1:              # no history yet: linear
         order = 1
-    pred = np.zeros((2,) + P.shape)
-    for m in range(order):
-        pred += d[:, m]
-    return d[:, :K].copy(), min(n, K), order, pred
+    pred = np.zeros((2, M))
+    for a in range(2):
+        for m in range(order):
+            for i in range(M):
+                pred[a, i] += d[a, m, i]
+    return (np.ascontiguousarray(d[:, :K]).reshape((2, K) + P.shape), min(n, K), order,
+            pred.reshape((2,) + P.shape))
+
+
+@numba.njit(cache=True)
+def contact_elements(p3):
+    """Indices (ix, iy) of the elements with p3 > 0 and their bounding box (i0, i1, j0, j1)
+    (i0 = -1 without contact)."""
+    nx, ny = p3.shape
+    n = 0
+    i0, i1, j0, j1 = nx, -1, ny, -1
+    for i in range(nx):
+        for j in range(ny):
+            if p3[i, j] > 0.0:
+                n += 1
+                i0, i1, j0, j1 = min(i0, i), max(i1, i), min(j0, j), max(j1, j)
+    ix, iy = np.empty(n, np.int64), np.empty(n, np.int64)
+    k = 0
+    for i in range(nx):
+        for j in range(ny):
+            if p3[i, j] > 0.0:
+                ix[k], iy[k] = i, j
+                k += 1
+    if n == 0:
+        i0 = -1
+    return ix, iy, (i0, i1, j0, j1)
