@@ -33,11 +33,11 @@ class TangentialContact(NamedTuple):
 
 
 class History(NamedTuple):
-    """The last transient steps' backward differences on the grid (``tang_steps.differences``):
-    d (2, ORDER, 2, nx, ny), row 0 tractions, row 1 displacements (d[:, 0] = the last change,
+    """The last transient steps' backward differences on the window (``tang_steps.differences``):
+    d (2, ORDER, 2, wx, wy), row 0 tractions, row 1 displacements (d[:, 0] = the last change,
     d[:, 1] its change, ...), n of them valid; the order (0 .. ORDER) of the polynomial
     extrapolation that would have predicted the last step best, and its prediction of the next
-    change, pred (2, 2, nx, ny) (tractions, displacements)."""
+    change on the grid, pred (2, 2, nx, ny) (tractions, displacements; zero off the window)."""
     d: np.ndarray
     n: int
     order: int
@@ -50,9 +50,9 @@ ORDER = 3                   # highest order of the predictor (cubic)
 
 def next_history(prev: History | None, window, P, P_old, U, U_old) -> History:
     """The history after a step from (P_old, U_old) to (P, U) (2, nx, ny) on ``window``."""
-    if prev is None or prev.d.shape[2:] != P.shape or prev.window != window:
+    if prev is None or prev.pred.shape[1:] != P.shape or prev.window != window:
         prev = History(np.zeros((2, ORDER, 2, 1, 1)), 0, 0, window, None)
-    d, n, order, pred = differences(P, P_old, U, U_old, prev.d, prev.n)
+    d, n, order, pred = differences(P, P_old, U, U_old, window, prev.d, prev.n)
     return History(d, n, order, window, pred)
 
 

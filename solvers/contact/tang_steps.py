@@ -67,46 +67,44 @@ def on_grid(ix, iy, p, s, stick, dt, P, S, st):
 
 
 @numba.njit(cache=True)
-def differences(P, P_old, U, U_old, prev, n_prev):
-    """Backward differences of the tractions P and displacements U (2, nx, ny) after a step:
-    d[:, 0] = this step's change, d[:, m] = d[:, m - 1] - prev[:, m - 1] (prev: the previous
-    step's differences (2, K, 2, nx, ny), n_prev of them valid; row 0 tractions, 1
-    displacements).  The extrapolation of order m would have predicted this step with error
-    d[0, m]: the order with the smallest max |d[0, m]| is chosen.  Returns (d (2, K, 2, nx, ny),
-    n valid, order, prediction (2, 2, nx, ny) of the next change: the sum of the first `order`
-    d)."""
+def differences(P, P_old, U, U_old, window, prev, n_prev):
+    """Backward differences of the tractions P and displacements U (2, nx, ny) after a step, on
+    the step's window (i0, i1, j0, j1): d[:, 0] = this step's change, d[:, m] = d[:, m - 1] -
+    prev[:, m - 1] (prev: the previous step's differences (2, K, 2, wx, wy) on the same window,
+    n_prev of them valid; row 0 tractions, 1 displacements).  The extrapolation of order m
+    would have predicted this step with error d[0, m]: the order with the smallest max |d[0, m]|
+    is chosen.  Returns (d (2, K, 2, wx, wy), n valid, order, prediction (2, 2, nx, ny) of the
+    next change on the grid (zero outside the window): the sum of the first `order` d)."""
+    i0, i1, j0, j1 = window
+    wx, wy = i1 - i0 + 1, j1 - j0 + 1
     K = prev.shape[1]
     n = min(n_prev, K) + 1
-    M = P.size
-    d = np.empty((2, K + 1, M))
-    pv = prev.reshape(2, K, -1) if n_prev > 0 else np.empty((2, K, 0))
-    cur = (P.ravel(), U.ravel())
-    old = (P_old.ravel(), U_old.ravel())
-    err = np.zeros(K + 1)
-    for a in range(2):
-        for i in range(M):
-            x = cur[a][i] - old[a][i]
-            d[a, 0, i] = x
-            if a == 0:
-                err[0] = max(err[0], abs(x))
-            for m in range(1, n):
-                x -= pv[a, m - 1, i]
-                d[a, m, i] = x
-                if a == 0:
-                    err[m] = max(err[m], abs(x))
-    order = 0
-    for m in range(1, n):
-        if err[m] < err[order]:
-            order = m
+    d = np.empty((2, K, 2, wx, wy))
+    cur = np.empty((2, 2, wx, wy))   # the difference of the order being formed
+    for c in range(2):
+        for i in range(wx):
+            for j in range(wy):
+                cur[0, c, i, j] = P[c, i0 + i, j0 + j] - P_old[c, i0 + i, j0 + j]
+                cur[1, c, i, j] = U[c, i0 + i, j0 + j] - U_old[c, i0 + i, j0 + j]
+    best, order = math.inf, 0
+    for m in range(n):
+        if m > 0:
+            cur -= prev[:, m - 1]
+        e = np.abs(cur[0]).max()
+        if e < best:
+            best, order = e, m
+        if m < K:
+            d[:, m] = cur
     if n == 1:              # no history yet: linear
         order = 1
-    pred = np.zeros((2, M))
-    for a in range(2):
-        for m in range(order):
-            for i in range(M):
-                pred[a, i] += d[a, m, i]
-    return (np.ascontiguousarray(d[:, :K]).reshape((2, K) + P.shape), min(n, K), order,
-            pred.reshape((2,) + P.shape))
+    pred = np.zeros((2,) + P.shape)
+    for m in range(order):
+        for a in range(2):
+            for c in range(2):
+                for i in range(wx):
+                    for j in range(wy):
+                        pred[a, c, i0 + i, j0 + j] += d[a, m, c, i, j]
+    return d, min(n, K), order, pred
 
 
 @numba.njit(cache=True)
