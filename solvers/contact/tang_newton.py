@@ -14,7 +14,8 @@ from .tang_kernels import (gather_slip, jacobian_rows, lift, newton_system, pcg_
 from .tang_operator import TangentialOperator, shifted_inverse
 from .tang_state import QUADRATIC, TOL
 
-CG_ABS = 0.1        # CG (transient) also stops when its last update is below CG_ABS tol x traction level
+CG_ABS = 0.1        # CG (transient) also stops when its error estimate is below CG_ABS tol x traction level
+RHO_MIN = 0.25      # ... the contraction per CG step assumed at least (the preconditioned CG's is ~1/4)
 
 
 # ----------------------------------------------------------------------------------------------
@@ -171,15 +172,16 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
 
     def pcg(rtol, atol, kmax):
         """J x = b by preconditioned CG (transient: J symmetric positive definite), fused kernels.
-        Stops at |r| <= rtol |b|, or when the last update max |alpha d| <= atol (the contraction
-        per step is about 1/4: the remaining error is then below atol).  Returns (x, steps,
-        error estimate: rtol max |x| or the last update)."""
+        Stops at |r| <= rtol |b|, or when the error left, estimated from the last update max
+        |alpha d| and its ratio rho to the one before (rho >= RHO_MIN) as |alpha d| rho / (1 -
+        rho), is below atol.  Returns (x, steps, error estimate: rtol max |x| or that estimate)."""
         x = np.zeros((N, 2))
         rv = b.copy()
         bn2 = float((b * b).sum())
         if bn2 == 0.0:
             return x, 0, 0.0
         four = inv[1] is not None
+        step_old = math.inf
         precondition_in(ix, iy, stick, t, sc, rv, False, four, grid4)
         Z = precondition(grid4, inv[0], inv[1])
         rz = pcg_direction(ix, iy, stick, t, sc, D, mdiag_s, Z, four, rv, z_vec, 0.0, d_vec, grid)
@@ -191,8 +193,11 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
                 return x, k, 0.0
             if rr <= rtol * rtol * bn2:
                 return x, k, rtol * xmax
-            if step <= atol:
-                return x, k, step
+            rho = min(max(step / step_old, RHO_MIN), 1.0)     # contraction of the last step
+            est = step * rho / (1.0 - rho) if rho < 1.0 else math.inf
+            if est <= atol:
+                return x, k, est
+            step_old = step
             Z = precondition(grid4, inv[0], inv[1])
             rz = pcg_direction(ix, iy, stick, t, sc, D, mdiag_s, Z, four, rv, z_vec, rz, d_vec, grid)
         return x, kmax, math.inf
