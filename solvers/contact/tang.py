@@ -53,9 +53,7 @@ approximation of the 2x2 Cerruti kernel (FFT on a torus of the window's size),
 preceded in steady state by the exact inverse of the transport difference (I -
 shift), a cumulative sum along x from the leading edge; on S (transient) the
 circulant inverse of the kernel shifted by the median of D, with a diagonal
-scaling for the spread of D, or, when every element slips (D then comparable
-with the diagonal of A), the diagonal 1 / (t' M_II t + D), as in steady
-state.  The
+scaling for the spread of D, (steady) the diagonal 1 / (t' M_II t + D).  The
 Krylov tolerance follows the Newton phase (rough while the sets move, just
 accurate enough at the end); CG also stops when its last update is below 0.1
 tol times the traction level where the step may be final (its contraction per

@@ -181,10 +181,9 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
         if bn2 == 0.0:
             return x, 0, 0.0
         four = inv[1] is not None
-        fft = four or inv[0] is not None         # every element slipping, diagonal: no transform
         step_old = math.inf
         precondition_in(ix, iy, stick, t, sc, rv, False, four, grid4)
-        Z = precondition(grid4, inv[0], inv[1]) if fft else grid4
+        Z = precondition(grid4, inv[0], inv[1])
         rz = pcg_direction(ix, iy, stick, t, sc, D, mdiag_s, Z, four, rv, z_vec, 0.0, d_vec, grid)
         for k in range(1, kmax + 1):
             U = convolve(grid)
@@ -199,8 +198,7 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
             if est <= atol:
                 return x, k, est
             step_old = step
-            if fft:
-                Z = precondition(grid4, inv[0], inv[1])
+            Z = precondition(grid4, inv[0], inv[1])
             rz = pcg_direction(ix, iy, stick, t, sc, D, mdiag_s, Z, four, rv, z_vec, rz, d_vec, grid)
         return x, kmax, math.inf
 
@@ -224,9 +222,7 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
         r_max, n_stick, dbar = newton_system(stick, theta, g, s, p, t, D, scale, R, b, mdiag_s, sc)
         inv[0] = op.inv if n_stick else None
         if not steady:
-            # slip part: the shifted circulant inverse next to stick elements; when every element
-            # slips, the diagonal 1 / (t' A_II t + D) (D ~ A_II there: cheaper than a transform)
-            inv[1] = shifted_inverse(op.symbol, dbar) if 0 < n_stick < N else None
+            inv[1] = shifted_inverse(op.symbol, dbar) if n_stick < N else None
         if n_changed > few or (newton == 1 and steady):
             eta = 1e-2        # the sets are still moving: a rough step
         elif ratio > 0.0:     # expected step from the last step per unit residual: absolute accuracy
