@@ -152,7 +152,7 @@ def run() -> str:
                     "extrapolated from the last steps, tolerance solvers.interaction.KALKER_TOL; elements "
                     "entering the contact (the interpolated field's set changes when the approach crosses a "
                     "table node) cost an extra Newton step or two."
-                    + " The 100-step runs start from the steady state. 8 s of rolling with Kalker's model in the loop (default case, full model, no early stop: `python -m benchmarks.interaction kalker`), measured outside this suite on 2026-11-24 on the shared machine: 146 s wall, 129 s CPU at load average 2.7 -> 1.6 (0.58 ms per step; 189 s wall, 136 s CPU at load 3.7 -> 4.4; over the first 0.1 s 1.1 Newton and 3-4 CG steps per time step, every element slipping); the first FFT solver took 641 s wall, 469 s CPU (2.6 Newton steps per step), the former dense solver ~27 min (estimated).")
+                    + " The 100-step runs start from the steady state. 8 s of rolling with Kalker's model in the loop (default case, full model, no early stop: `python -m benchmarks.interaction kalker`), measured outside this suite on 2026-11-24 on the shared machine: 146 s wall, 129 s CPU at load average 2.7 -> 1.6 (0.58 ms per step; over the first 0.1 s 1.1 Newton and 3-4 CG steps per time step, every element slipping); the first FFT solver took 641 s wall, 469 s CPU (2.6 Newton steps per step), the former dense solver ~27 min (estimated).")
         ref.append(f"| -> 8 s of rolling with TANG | {t_k * n_steps / 60:.0f} min |")
     t_full = runs["full model"][0]
     t_dir = runs["full model, rail by the direct sum (the former loop)"][0]
