@@ -19,8 +19,8 @@ from benchmarks.timing import median_time, min_time
 from solvers.partitioned import DEFAULT_BLOCK
 
 from solvers.interaction import WheelModes, point_contact, simulate
-from tests.interaction import (CONTACT, DT, GAMMA_Y, RAIL, ROOT, V, beam_kernel, bv50_kernel, c20_modes,
-                               default_contact)
+from tests.interaction import (CONTACT, DT, GAMMA_Y, MU as MU_DEFAULT, RAIL, ROOT, V, beam_kernel, bv50_kernel,
+                               c20_modes, default_contact)
 
 RAIL_LAGS = 2048
 
@@ -167,7 +167,7 @@ def run() -> str:
                     "extrapolated from the last steps, tolerance solvers.interaction.KALKER_TOL; elements "
                     "entering the contact (the interpolated field's set changes when the approach crosses a "
                     "table node) cost an extra Newton step or two."
-                    + " The 100-step runs start from the steady state; over a whole run in the limit cycle TANG needs more Newton steps: 8 s of rolling with Kalker's model in the loop (default case, full model, no early stop), measured once outside this suite on 2026-11-24 on the shared machine (load average 3.5-5): 641 s wall, 469 s CPU (2.1 ms per step, 2.6 Newton steps per step; the former dense solver: ~27 min estimated).")
+                    + " The 100-step runs start from the steady state. 8 s of rolling with Kalker's model in the loop (default case, full model, no early stop: `python -m benchmarks.interaction kalker`), measured outside this suite on 2026-11-24 on the shared machine: 146 s wall, 129 s CPU at load average 2.7 -> 1.6 (0.58 ms per step; over the first 0.1 s 1.1 Newton and 3-4 CG steps per time step, every element slipping); the first FFT solver took 641 s wall, 469 s CPU (2.6 Newton steps per step), the former dense solver ~27 min (estimated).")
         ref.append(f"| -> 8 s of rolling with TANG | {t_k * n_steps / 60:.0f} min |")
     t_full = runs["full model"][0]
     t_dir = runs["full model, rail by the direct sum (the former loop)"][0]
@@ -228,5 +228,39 @@ Reference drivers (Python loop over the steps, {n_ref}-step runs of the same mod
 """
 
 
+def kalker_run(duration: float = 8.0) -> str:
+    """``duration`` s of rolling of the default case with Kalker's transient TANG in the loop (the
+    full model as the simulate stage builds it: build/cases/default/greens.npz and contact.npz,
+    no early stop, history every 10th step), after a 20-step warm-up; not part of run() (minutes):
+
+        OMP_NUM_THREADS=1 .venv/bin/python -m benchmarks.interaction kalker [seconds]
+    """
+    import os
+    import time
+
+    from solvers.interaction import contact_model
+
+    with np.load(GREENS) as d:
+        wheel = WheelModes(d["wheel_f"], d["wheel_mass"], d["wheel_zeta"], d["wheel_phi"])
+        g = d["rail_kernel"]
+    with np.load(CONTACT) as d:
+        contact = contact_model({k: d[k] for k in d.files}, MU_DEFAULT)
+    kw = dict(dt=DT, v=V, gamma_y=GAMMA_Y, stop=None, tangential="kalker", store_every=10)
+    simulate(wheel, g, contact, duration=20 * DT, **kw)
+    load0 = os.getloadavg()[0]
+    c0, w0 = time.process_time(), time.perf_counter()
+    r = simulate(wheel, g, contact, duration=duration, **kw)
+    cpu, wall = time.process_time() - c0, time.perf_counter() - w0
+    m = r.measures()
+    return (f"{duration:g} s of rolling with Kalker's transient TANG in the loop ({r.n_steps:,} steps): wall {wall:.1f} s, "
+            f"CPU {cpu:.1f} s ({1e3 * cpu / r.n_steps:.3f} ms per step); L_F2 = {m['L_F2']:.3f} dB, dominant "
+            f"{m['f_dominant']:.2f} Hz; load average {load0:.1f} -> {os.getloadavg()[0]:.1f}")
+
+
 if __name__ == "__main__":
-    print(run())
+    import sys
+
+    if sys.argv[1:2] == ["kalker"]:
+        print(kalker_run(float(sys.argv[2]) if len(sys.argv) > 2 else 8.0))
+    else:
+        print(run())

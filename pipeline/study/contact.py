@@ -8,9 +8,10 @@
 * stand-alone: rigid, fixed wheel and rail, prescribed creepage gamma_y(t) = gamma_0 +
   amplitude sin(2 pi f t) over frequency; F2's mean, amplitude and phase at f.
 
-Kalker's transient model costs ~1.5 ms (CPU) per time step, the point model ~5 us
-(docs/benchmarks.md): the durations in pipeline/studies/contact.toml are sized for that (see
-the file).  Kalker's runs are submitted first (the longest tasks first).
+Kalker's transient model costs ~0.6 ms (CPU) per time step, the point model ~5 us
+(docs/benchmarks.md): every run may go to the SPEC's 8 s and stops at its limit cycle
+(pipeline/studies/contact.toml gives the numbers).  Kalker's runs are submitted first (the
+longest tasks first).
 
 Outputs: table.csv, modes.csv and creepage.csv (point vs Kalker side by side), contact_modes.png,
 contact_creepage.png, summary.md.

@@ -219,12 +219,16 @@ def table_force(xi3, xi3_nodes, q_nodes):
 def table_pressure(table: NormTable, xi3):
     """Pressure field at xi3 interpolated linearly between the tabulated fields and
     scaled to the interpolated force table_force(xi3)."""
-    xs = table.xi3
-    k = int(np.clip(np.searchsorted(xs, xi3) - 1, 0, len(xs) - 2))
+    return _table_pressure(float(xi3), table.xi3, table.p, table.F3, table.q)
+
+
+@numba.njit(cache=True)
+def _table_pressure(xi3, xs, P, F3, q):
+    k = min(max(np.searchsorted(xs, xi3) - 1, 0), len(xs) - 2)
     t = (xi3 - xs[k]) / (xs[k + 1] - xs[k])
-    p = (1.0 - t) * table.p[k] + t * table.p[k + 1]
-    F_lin = (1.0 - t) * table.F3[k] + t * table.F3[k + 1]     # force of p
-    return p * (table_force(float(xi3), xs, table.q) / F_lin) if F_lin > 0.0 else p
+    F_lin = (1.0 - t) * F3[k] + t * F3[k + 1]     # force of p
+    p = (1.0 - t) * P[k] + t * P[k + 1]
+    return p * (table_force(xi3, xs, q) / F_lin) if F_lin > 0.0 else p
 
 
 def table_midpoint_error(table: NormTable, gap, dx, dy, E=210e9, nu=0.3) -> dict:

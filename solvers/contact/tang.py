@@ -33,9 +33,10 @@ same limit under grid refinement, 1/2 with the smallest error at a given grid
 
 Solver.  s = r + M p (in units of displacement per step, s dt) with M = A - A(x +
 dx) in steady state and M = A transient; products with M are FFT convolutions
-on a window around the contact (its bounding box plus one element; one forward
-and one inverse transform of both traction components give the displacements
-on the window and one row ahead), O(n log n).  Kalker's active-set Newton
+on a window around the contact (its bounding box, grown by one element once a
+breathing contact outgrew it; one forward and one inverse transform of both
+traction components give the displacements on the window and one row ahead),
+O(n log n).  Kalker's active-set Newton
 method on these equations: elements are split into a stick set H (unknowns p1,
 p2; equations s = 0) and a slip set S (unknown: the traction angle theta, |p| =
 mu p3; equation: slip along the traction, t . s = 0 with t the tangent to the
@@ -54,13 +55,18 @@ shift), a cumulative sum along x from the leading edge; on S (transient) the
 circulant inverse of the kernel shifted by the median of D, with a diagonal
 scaling for the spread of D, (steady) the diagonal 1 / (t' M_II t + D).  The
 Krylov tolerance follows the Newton phase (rough while the sets move, just
-accurate enough at the end).  No matrix of the size of the contact area is
-ever formed.  Warm starts (a previous solution's tractions and sets) cut the
-Newton steps to a few; in transient rolling the start is extrapolated from the
-last steps (constant, linear or quadratic: whichever would have predicted the
-last step best), so a time step takes one or two Newton steps.  Timings and
-scaling: benchmarks/contact.py; agreement with the former dense solver
-(tests/contact/tang_dense.py) and with CONTACT: docs/validation/30_contact.md.
+accurate enough at the end); CG also stops when its last update is below 0.1
+tol times the traction level where the step may be final (its contraction per
+step is about 1/4: the error left is a fraction of the final step's budget).
+No matrix of the size of the contact area is ever formed.  Warm starts (a
+previous solution's tractions and sets) cut the Newton steps to a few; in
+transient rolling the start is extrapolated from the last steps (a polynomial
+of order 0 to 3: whichever would have predicted the last step best) and its
+sets updated as after a Newton step, so a time step takes one Newton step, two
+or three where elements change set.  The per-step bookkeeping on the grid is
+compiled (tang_steps).  Timings and scaling: benchmarks/contact.py; agreement
+with the former dense solver (tests/contact/tang_dense.py) and with CONTACT:
+docs/validation/30_contact.md.
 """
 from __future__ import annotations
 
@@ -69,7 +75,7 @@ import numpy as np
 # The code lives one idea a module: tang_state (solution, problem, options, predictor history),
 # tang_operator (FFT influence products, preconditioner), tang_kernels (numba element kernels),
 # tang_newton (the active-set Newton method and its Krylov solvers), tang_rolling (one step's
-# problem on the contact's window).
+# problem on the contact's window), tang_steps (its bookkeeping on the grid, numba).
 from .tang_newton import CoulombResult, solve_coulomb  # noqa: F401
 from .tang_operator import TangentialOperator, shifted_inverse, tangential_operator  # noqa: F401
 from .tang_rolling import solve_rolling

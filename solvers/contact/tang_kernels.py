@@ -141,22 +141,25 @@ def pcg_direction(ix, iy, stick, t, sc, D, mdiag, Z, slip_fft, r, z, rz_old, d, 
 @numba.njit(cache=True)
 def pcg_update(ix, iy, stick, t, D, U, steady, scale, d, q, rz, x, r, sc, slip_fft, prec_in):
     """PCG: q = J d from the displacements U of the lifted d, alpha = rz / (d . q), x += alpha d,
-    r -= alpha q, and r prepared for the preconditioner.  Returns (|r|^2, d . q)."""
+    r -= alpha q, and r prepared for the preconditioner.  Returns (|r|^2, d . q, max |alpha d|,
+    max |x|)."""
     jacobian_rows(ix, iy, stick, t, D, U, steady, scale, d, q)
     dq = 0.0
     for k in range(d.shape[0]):
         dq += d[k, 0] * q[k, 0] + d[k, 1] * q[k, 1]
     if dq <= 0.0:
-        return 0.0, dq
+        return 0.0, dq, 0.0, 0.0
     alpha = rz / dq
-    rr = 0.0
+    rr = dmax = xmax = 0.0
     for k in range(d.shape[0]):
         for a in range(2):
             x[k, a] += alpha * d[k, a]
             r[k, a] -= alpha * q[k, a]
             rr += r[k, a] * r[k, a]
+            dmax = max(dmax, abs(d[k, a]))
+            xmax = max(xmax, abs(x[k, a]))
     precondition_in(ix, iy, stick, t, sc, r, steady, slip_fft, prec_in)
-    return rr, dq
+    return rr, dq, abs(alpha) * dmax, xmax
 
 
 @numba.njit(cache=True)
@@ -236,3 +239,56 @@ def update_sets(stick, theta, g, p, s, rel):
                 stick[k] = True
                 n_stick += 1
     return n_slip, n_stick
+
+
+@numba.njit(cache=True)
+def start_on_bounds(stick, theta, g, s, p, t, D, scale, p_given):
+    """The start of a solve: slip elements on their circle (slip_geometry), stick elements beyond
+    their bound scaled onto it.  Returns (traction level max |p|, largest change from p_given)."""
+    slip_geometry(stick, theta, g, s, p, t, D, scale)
+    level = moved = 0.0
+    for k in range(stick.shape[0]):
+        if stick[k]:
+            a = math.hypot(p[k, 0], p[k, 1])
+            if a > g[k]:
+                p[k, 0] *= g[k] / a
+                p[k, 1] *= g[k] / a
+        level = max(level, abs(p[k, 0]), abs(p[k, 1]))
+        moved = max(moved, abs(p[k, 0] - p_given[k, 0]), abs(p[k, 1] - p_given[k, 1]))
+    return max(level, 1e-300), moved
+
+
+@numba.njit(cache=True)
+def newton_system(stick, theta, g, s, p, t, D, scale, R, b, mdiag, sc):
+    """One Newton step's system: geometry (slip_geometry), residual R and right-hand side b = -R /
+    scale, and (transient preconditioner) the slip elements' scaling sc (slip_scaling).  Returns
+    (max |R|, number of stick elements, median D on slip)."""
+    slip_geometry(stick, theta, g, s, p, t, D, scale)
+    r_max = residual(stick, t, s, R)
+    n_stick = 0
+    for k in range(stick.shape[0]):
+        b[k, 0] = -R[k, 0] / scale
+        b[k, 1] = -R[k, 1] / scale
+        n_stick += stick[k]
+    dbar = slip_scaling(stick, t, D, mdiag, sc) if n_stick < stick.shape[0] else 0.0
+    return r_max, n_stick, dbar
+
+
+@numba.njit(cache=True)
+def step_and_scatter(ix, iy, stick, theta, g, dz, p, clip, out):
+    """apply_step, then the new tractions on the grid (scatter).  Returns the largest change."""
+    change = apply_step(stick, theta, g, dz, p, clip)
+    scatter(ix, iy, p, out)
+    return change
+
+
+@numba.njit(cache=True)
+def slip_and_sets(ix, iy, u, steady, r, s, stick, theta, g, p, rel):
+    """gather_slip from the displacements u of p, then the set update (update_sets).  Returns
+    (moved to slip, moved to stick, traction level max |p|)."""
+    gather_slip(ix, iy, u, steady, r, s)
+    n_slip, n_stick = update_sets(stick, theta, g, p, s, rel)
+    level = 1e-300
+    for k in range(p.shape[0]):
+        level = max(level, abs(p[k, 0]), abs(p[k, 1]))
+    return n_slip, n_stick, level

@@ -8,11 +8,14 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
-from .tang_kernels import (apply_step, gather_slip, jacobian_rows, lift, pcg_direction, pcg_update,
-                           precondition_in, precondition_out, residual, scatter, slip_geometry, slip_scaling,
-                           update_sets)
+from .tang_kernels import (gather_slip, jacobian_rows, lift, newton_system, pcg_direction, pcg_update,
+                           precondition_in, precondition_out, scatter, slip_and_sets, slip_geometry,
+                           start_on_bounds, step_and_scatter, update_sets)
 from .tang_operator import TangentialOperator, shifted_inverse
 from .tang_state import QUADRATIC, TOL
+
+CG_ABS = 0.1        # CG (transient) also stops when its error estimate is below CG_ABS tol x traction level
+RHO_MIN = 0.25      # ... the contraction per CG step assumed at least (the preconditioned CG's is ~1/4)
 
 
 # ----------------------------------------------------------------------------------------------
@@ -127,99 +130,99 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
     stick = np.array(stick, dtype=bool)
     bufs = op.buffers
     grid = bufs.conv_in                       # the FFT input arrays, filled in place
+    convolve, precondition = bufs.convolve, bufs.precondition
     scale = op.scale
-    mdiag = op.a0 - op.a1 if steady else op.a0.copy()
-    mdiag_s = mdiag / scale
+    mdiag_s = (op.a0 - op.a1 if steady else op.a0) / scale
     theta = np.arctan2(p[:, 1], p[:, 0])
-    t = np.zeros((N, 2))
+    t, s, R, b = np.zeros((N, 2)), np.zeros((N, 2)), np.zeros((N, 2)), np.zeros((N, 2))
     D = np.zeros(N)
-    s = np.zeros((N, 2))
-    R = np.zeros((N, 2))
-    # start: slip elements on their circle, stick elements inside their bound
-    p_given = p.copy() if u_start is not None else None
-    slip_geometry(stick, theta, g, s, p, t, D, scale)
-    over = stick & (np.hypot(p[:, 0], p[:, 1]) > g)
-    if over.any():
-        p[over] *= (g[over] / np.hypot(p[over, 0], p[over, 1]))[:, None]
-    if p_given is not None:       # the predicted displacements hold for the start only if it was kept
-        level = max(float(np.abs(p).max(initial=0.0)), 1e-300)
-        if float(np.abs(p - p_given).max(initial=0.0)) > 1e-3 * math.sqrt(tol / QUADRATIC) * level:
-            u_start = None
+    sc = np.ones(N)
+    q_lim = math.sqrt(tol / QUADRATIC)           # steps this small are final (quadratic convergence) ...
+    eta_final = min(1e-3, 0.1 * tol / q_lim)      # ... if solved this accurately
+    # start: slip elements on their circle, stick elements inside their bound; the predicted
+    # displacements hold for the start only if it was kept
+    p_level, moved = start_on_bounds(stick, theta, g, s, p, t, D, scale, p.copy())
+    if u_start is not None and moved > 1e-3 * q_lim * p_level:
+        u_start = None
 
     def slip_of(pp):
         scatter(ix, iy, pp, grid)
-        u = op.displacements(grid)
+        u = convolve(grid)
         gather_slip(ix, iy, u, steady, r, s)
         return u
 
     def J(x):
         lift(ix, iy, stick, t, x, grid)
-        u = op.displacements(grid)
+        u = convolve(grid)
         y = np.empty_like(x)
         jacobian_rows(ix, iy, stick, t, D, u, steady, scale, x, y)
         return y
 
     grid4 = bufs.prec_in
-    sc = np.ones(N)
-    inv_slip = [None]
-    inv_stick = [op.inv]
-    slip_fft = not steady
+    inv = [op.inv, None]                          # the preconditioner's symbols: stick, slip (transient)
 
-    def Pinv(x):
-        four = slip_fft and inv_slip[0] is not None
-        precondition_in(ix, iy, stick, t, sc, x, steady, four, grid4)
-        z = op.precondition(grid4, inv_stick[0], inv_slip[0] if four else None)
+    def Pinv(x):                                  # steady: GMRES's preconditioner (slip: diagonal)
+        precondition_in(ix, iy, stick, t, sc, x, True, False, grid4)
+        z = precondition(grid4, inv[0], None)
         y = np.empty_like(x)
-        precondition_out(ix, iy, stick, t, sc, D, mdiag_s, z, four, x, y)
+        precondition_out(ix, iy, stick, t, sc, D, mdiag_s, z, False, x, y)
         return y
 
     q_vec, z_vec, d_vec = np.zeros((N, 2)), np.zeros((N, 2)), np.zeros((N, 2))
 
-    def pcg(b, rtol, kmax):
-        """J x = b by preconditioned CG (transient: J symmetric positive definite), fused kernels."""
+    def pcg(rtol, atol, kmax):
+        """J x = b by preconditioned CG (transient: J symmetric positive definite), fused kernels.
+        Stops at |r| <= rtol |b|, or when the error left, estimated from the last update max
+        |alpha d| and its ratio rho to the one before (rho >= RHO_MIN) as |alpha d| rho / (1 -
+        rho), is below atol.  Returns (x, steps, error estimate: rtol max |x| or that estimate)."""
         x = np.zeros((N, 2))
         rv = b.copy()
         bn2 = float((b * b).sum())
         if bn2 == 0.0:
-            return x, 0
-        four = inv_slip[0] is not None
+            return x, 0, 0.0
+        four = inv[1] is not None
+        step_old = math.inf
         precondition_in(ix, iy, stick, t, sc, rv, False, four, grid4)
-        Z = op.precondition(grid4, inv_stick[0], inv_slip[0])
+        Z = precondition(grid4, inv[0], inv[1])
         rz = pcg_direction(ix, iy, stick, t, sc, D, mdiag_s, Z, four, rv, z_vec, 0.0, d_vec, grid)
         for k in range(1, kmax + 1):
-            U = op.displacements(grid)
-            rr, dq = pcg_update(ix, iy, stick, t, D, U, False, scale, d_vec, q_vec, rz, x, rv, sc, four,
-                                 grid4)
-            if dq <= 0.0 or rr <= rtol * rtol * bn2:
-                return x, k
-            Z = op.precondition(grid4, inv_stick[0], inv_slip[0])
+            U = convolve(grid)
+            rr, dq, step, xmax = pcg_update(ix, iy, stick, t, D, U, False, scale, d_vec, q_vec, rz, x, rv, sc,
+                                            four, grid4)
+            if dq <= 0.0:
+                return x, k, 0.0
+            if rr <= rtol * rtol * bn2:
+                return x, k, rtol * xmax
+            rho = min(max(step / step_old, RHO_MIN), 1.0)     # contraction of the last step
+            est = step * rho / (1.0 - rho) if rho < 1.0 else math.inf
+            if est <= atol:
+                return x, k, est
+            step_old = step
+            Z = precondition(grid4, inv[0], inv[1])
             rz = pcg_direction(ix, iy, stick, t, sc, D, mdiag_s, Z, four, rv, z_vec, rz, d_vec, grid)
-        return x, kmax
+        return x, kmax, math.inf
 
     if u_start is not None and not steady:
         gather_slip(ix, iy, u_start, False, r, s)
         u = None
     else:
         u = slip_of(p)
+    if warm and not steady:         # transient: the sets the (predicted) start implies, as after a step
+        slip_geometry(stick, theta, g, s, p, t, D, scale)
+        to_slip, to_stick = update_sets(stick, theta, g, p, s, 1e-9)
+        if to_slip:
+            u = slip_of(p)
     newton = krylov = 0
     converged = False
     sets_changed = not warm
     n_changed = N if not warm else 0
     few = 2                                     # set changes after which the next step may be final
-    p_level = max(float(np.abs(p).max(initial=0.0)), 1e-300)
-    q_lim = math.sqrt(tol / QUADRATIC)           # steps this small are final (quadratic convergence) ...
-    eta_final = min(1e-3, 0.1 * tol / q_lim)      # ... if solved this accurately
     ratio = 0.0
     for newton in range(1, max_iter + 1):
-        slip_geometry(stick, theta, g, s, p, t, D, scale)
-        r_max = residual(stick, t, s, R)
-        inv_stick[0] = op.inv if stick.any() else None
-        if slip_fft:
-            if stick.all():
-                inv_slip[0] = None
-            else:
-                inv_slip[0] = shifted_inverse(op.symbol, slip_scaling(stick, t, D, mdiag_s, sc))
-        b = -R / scale
+        r_max, n_stick, dbar = newton_system(stick, theta, g, s, p, t, D, scale, R, b, mdiag_s, sc)
+        inv[0] = op.inv if n_stick else None
+        if not steady:
+            inv[1] = shifted_inverse(op.symbol, dbar) if n_stick < N else None
         if n_changed > few or (newton == 1 and steady):
             eta = 1e-2        # the sets are still moving: a rough step
         elif ratio > 0.0:     # expected step from the last step per unit residual: absolute accuracy
@@ -228,16 +231,16 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
             eta = eta_final
         if steady:
             dz, k = _gmres(J, Pinv, b, eta, 40)
-        else:
-            dz, k = pcg(b, eta, 200)
+            err = eta * float(np.abs(dz).max(initial=0.0))
+        else:   # absolute stop only where the step may be final (its error budget: 0.1 tol level)
+            dz, k, err = pcg(eta, CG_ABS * tol * p_level if n_changed <= few else 0.0, 200)
         krylov += k
-        change = apply_step(stick, theta, g, dz, p, 0.5)
+        change = step_and_scatter(ix, iy, stick, theta, g, dz, p, 0.5, grid)
         ratio = change / max(r_max, 1e-300)
-        u = slip_of(p)
-        to_slip, to_stick = update_sets(stick, theta, g, p, s, 1e-9)
-        p_level = max(float(np.abs(p).max(initial=0.0)), 1e-300)
+        u = convolve(grid)
+        to_slip, to_stick, p_level = slip_and_sets(ix, iy, u, steady, r, s, stick, theta, g, p, 1e-9)
         final = change <= tol * p_level or (not sets_changed and change <= q_lim * p_level
-                                            and eta * change <= 0.1 * tol * p_level)
+                                            and err <= 0.1 * tol * p_level)
         n_changed = to_slip + to_stick
         sets_changed = n_changed > 0
         if not sets_changed and final:

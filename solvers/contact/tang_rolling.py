@@ -10,21 +10,19 @@ import numpy as np
 from .tang_newton import solve_coulomb
 from .tang_operator import tangential_operator
 from .tang_state import Rolling, TangentialContact, TangOptions, next_history
+from .tang_steps import contact_elements, on_grid, rigid_and_transport, start_values
 
 
-PAD = 1                     # elements around the contact's bounding box in the working window
+_EMPTY = np.zeros((2, 0, 0))   # "no array" for the numba kernels
+PAD = 1                     # elements around the contact's bounding box when it outgrew the window
 
 
-def _window(contact, pad=PAD):
-    """Bounding box of the contact elements grown by `pad`, clipped to the grid: (i0, i1, j0, j1)
-    inclusive, or None without contact."""
-    rows = np.flatnonzero(contact.any(axis=1))
-    if rows.size == 0:
+def _grow(box, shape, pad):
+    """Bounding box (i0, i1, j0, j1) grown by `pad`, clipped to the grid; None without contact."""
+    if box[0] < 0:
         return None
-    cols = np.flatnonzero(contact.any(axis=0))
-    nx, ny = contact.shape
-    return (max(int(rows[0]) - pad, 0), min(int(rows[-1]) + pad, nx - 1),
-            max(int(cols[0]) - pad, 0), min(int(cols[-1]) + pad, ny - 1))
+    nx, ny = shape
+    return (max(box[0] - pad, 0), min(box[1] + pad, nx - 1), max(box[2] - pad, 0), min(box[3] + pad, ny - 1))
 
 
 def _inside(w, v):
@@ -43,70 +41,56 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
     nx, ny = shape
     contact = p3 > 0.0
     dt = dx / v
-    ix, iy = np.nonzero(contact)
+    ix, iy, box = contact_elements(p3)
     N = ix.size
-    win = _window(contact)
+    win = _grow(box, shape, 0)
     if win is not None and warm is not None and warm.p1.shape == shape and warm.history is not None:
         # keep the previous step's window while the contact fits in it (a stable window keeps the
-        # predictor's history and the operator): time loops with a breathing contact area
+        # predictor's history and the operator); a contact that outgrew it gets PAD elements
+        # around it (time loops with a breathing contact area)
         old = warm.history.window
-        tight = _window(contact, 0)
-        if _inside(tight, old) and (old[1] - old[0] + 1) * (old[3] - old[2] + 1) <= \
-                2 * (win[1] - win[0] + 1) * (win[3] - win[2] + 1):
+        padded = _grow(box, shape, PAD)
+        if _inside(win, old) and (old[1] - old[0] + 1) * (old[3] - old[2] + 1) <= \
+                2 * (padded[1] - padded[0] + 1) * (padded[3] - padded[2] + 1):
             win = old
-    P1, P2, S1, S2 = (np.zeros(shape) for _ in range(4))
+        else:
+            win = padded
+    P, S = np.zeros((2,) + shape), np.zeros((2,) + shape)
     st = np.zeros(shape, bool)
-    # rigid slip at the contact elements, times dt (rigid_slip's formula at x_I + w_offset dx)
-    xc = (ix - 0.5 * (nx - 1) + w_offset) * dx
-    yc = (iy - 0.5 * (ny - 1)) * dy
-    r = np.empty((N, 2))
-    r[:, 0] = (gamma_x - spin * yc) * v * dt
-    r[:, 1] = (gamma_y + spin * xc) * v * dt
     transient_prev = (not steady) and warm is not None and warm.p1.shape == shape
+    P_old = np.stack([warm.p1, warm.p2]) if warm is not None and warm.p1.shape == shape else None
+    ahead = _EMPTY
     if transient_prev:                         # transport term: -u(x + dx, t - dt)
         ahead = warm.u_ahead
         if ahead is None or not _inside(win, warm.window):
-            full = tangential_operator(shape, dx, dy, E, nu)
-            ahead = full.displacements(np.stack([warm.p1, warm.p2]))[:, 1:]
-        r[:, 0] -= ahead[0][ix, iy]
-        r[:, 1] -= ahead[1][ix, iy]
+            ahead = tangential_operator(shape, dx, dy, E, nu).displacements(P_old)[:, 1:]
+    r = np.empty((N, 2))                       # rigid slip times dt at x_I + w_offset dx, transport
+    rigid_and_transport(ix, iy, shape, (dx, dy, v, dt, gamma_x, gamma_y, spin, w_offset), ahead, r)
     if N == 0 or mu <= 0.0:                    # no contact or no friction: traction-free, all slip
-        S1[ix, iy], S2[ix, iy] = r[:, 0] / dt, r[:, 1] / dt
+        S[0][ix, iy], S[1][ix, iy] = r[:, 0] / dt, r[:, 1] / dt
         zero = np.zeros(shape)
-        return TangentialContact(P1, P2, st, contact.copy(), S1, S2, zero, zero.copy(), 0.0, 0.0, 0, True, 0,
-                                 np.zeros((2,) + shape), None, (0, nx - 1, 0, ny - 1))
+        return TangentialContact(P[0], P[1], st, contact.copy(), S[0], S[1], zero, zero.copy(), 0.0, 0.0, 0, True,
+                                 0, np.zeros((2,) + shape), None, (0, nx - 1, 0, ny - 1))
     i0, i1, j0, j1 = win
     op = tangential_operator((i1 - i0 + 1, j1 - j0 + 1), dx, dy, E, nu)
     g = mu * p3[ix, iy]
     u_start = None
-    if warm is not None and warm.p1.shape == shape:
-        p0 = np.column_stack([warm.p1[ix, iy], warm.p2[ix, iy]])
-        stick0 = ~warm.slip[ix, iy]
-        new = ~(warm.stick | warm.slip)[ix, iy]       # elements entering the contact: start sliding
-        if new.any():                                 # against the rigid slip (the set update corrects)
-            rn = np.hypot(r[new, 0], r[new, 1])
-            ok = rn > 0.0
-            idx = np.flatnonzero(new)[ok]
-            p0[idx] = -(g[idx] / rn[ok])[:, None] * r[idx]
-            stick0[idx] = False
+    p0, stick0 = np.zeros((N, 2)), np.ones(N, bool)
+    if P_old is not None:                      # warm start; entering elements start sliding
         h = warm.history
-        if transient_prev and h is not None and h.order > 0 and h.window == win and _inside(win, warm.window):
-            dp, du = (h.dp, h.du) if h.order == 1 else (h.dp + h.d2p, h.du + h.d2u)    # predictor
-            p0 += np.column_stack([dp[0][ix, iy], dp[1][ix, iy]])
+        predict = transient_prev and h is not None and h.order > 0 and h.window == win \
+            and _inside(win, warm.window)
+        start_values(ix, iy, r, g, P_old, warm.stick, warm.slip, h.pred[0] if predict else _EMPTY, p0, stick0)
+        if predict:                            # predictor: polynomial extrapolation of the last steps
             u_start = np.stack([warm.u1[i0:i1 + 1, j0:j1 + 1], warm.u2[i0:i1 + 1, j0:j1 + 1]]) \
-                + du[:, i0:i1 + 1, j0:j1 + 1]
-    else:
-        p0, stick0 = np.zeros((N, 2)), np.ones(N, bool)
+                + h.pred[1][:, i0:i1 + 1, j0:j1 + 1]
     res = solve_coulomb(op, ix - i0, iy - j0, r, g, p0, stick0, steady=steady, tol=tol, warm=warm is not None,
                         u_start=u_start)
     if not res.converged:
         warnings.warn("TANG: stick/slip sets not converged", RuntimeWarning)
-    p, s = res.p, res.s
-    P1[ix, iy], P2[ix, iy] = p[:, 0], p[:, 1]
-    S1[ix, iy], S2[ix, iy] = s[:, 0] / dt, s[:, 1] / dt
-    st[ix, iy] = res.stick
+    f1, f2 = on_grid(ix, iy, res.p, res.s, res.stick, dt, P, S, st)
     if full_output and win != (0, nx - 1, 0, ny - 1):
-        u = tangential_operator(shape, dx, dy, E, nu).displacements(np.stack([P1, P2]))
+        u = tangential_operator(shape, dx, dy, E, nu).displacements(P)
         valid = (0, nx - 1, 0, ny - 1)
         U = u[:, :nx].copy()
         ahead = np.ascontiguousarray(u[:, 1:])
@@ -118,8 +102,7 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
         ahead[:, i0:i1 + 1, j0:j1 + 1] = res.u[:, 1:]
     history = None
     if transient_prev:
-        history = next_history(warm.history, win, np.stack([P1 - warm.p1, P2 - warm.p2]),
-                                U - np.stack([warm.u1, warm.u2]))
+        history = next_history(warm.history, win, P, P_old, U, np.stack([warm.u1, warm.u2]))
     dA = dx * dy
-    return TangentialContact(P1, P2, st, contact & ~st, S1, S2, U[0], U[1], float(p[:, 0].sum() * dA),
-                             float(p[:, 1].sum() * dA), res.newton, res.converged, res.krylov, ahead, history, valid)
+    return TangentialContact(P[0], P[1], st, contact & ~st, S[0], S[1], U[0], U[1], f1 * dA, f2 * dA, res.newton,
+                             res.converged, res.krylov, ahead, history, valid)

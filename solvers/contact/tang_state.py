@@ -6,6 +6,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from .tang_steps import differences
+
 W_OFFSET = 1.0 / 6.0        # rigid slip evaluated at x_I + W_OFFSET dx (see the module notes)
 QUADRATIC = 10.0            # bound of the Newton steps' quadratic constant (relative), for stopping
 TOL = 1e-8                  # default: Newton step <= TOL * traction level, no set change
@@ -31,27 +33,27 @@ class TangentialContact(NamedTuple):
 
 
 class History(NamedTuple):
-    """Differences of the last transient steps on the grid (2, nx, ny): first dp = p_k - p_k-1 and
-    second d2p = dp_k - dp_k-1 (likewise du, d2u of the displacements), and the order (0, 1, 2) of
-    the polynomial extrapolation that would have predicted the last step best."""
-    dp: np.ndarray
-    du: np.ndarray
-    d2p: np.ndarray | None
-    d2u: np.ndarray | None
+    """The last transient steps' backward differences on the window (``tang_steps.differences``):
+    d (2, ORDER, 2, wx, wy), row 0 tractions, row 1 displacements (d[:, 0] = the last change,
+    d[:, 1] its change, ...), n of them valid; the order (0 .. ORDER) of the polynomial
+    extrapolation that would have predicted the last step best, and its prediction of the next
+    change on the grid, pred (2, 2, nx, ny) (tractions, displacements; zero off the window)."""
+    d: np.ndarray
+    n: int
     order: int
     window: tuple           # the working window of the step (the differences are valid there)
+    pred: np.ndarray
 
 
-def next_history(prev: History | None, window, dp, du) -> History:
-    """The history after a step with changes dp, du on ``window`` (the predictor's order chosen
-    by which would have predicted this step best)."""
-    if prev is None or prev.dp.shape != dp.shape or prev.window != window:
-        return History(dp, du, None, None, 1, window)
-    d2p, d2u = dp - prev.dp, du - prev.du
-    errors = [np.abs(dp).max(), np.abs(d2p).max()]          # constant, linear predictor
-    if prev.d2p is not None:
-        errors.append(np.abs(d2p - prev.d2p).max())          # quadratic
-    return History(dp, du, d2p, d2u, int(np.argmin(errors)), window)
+ORDER = 3                   # highest order of the predictor (cubic)
+
+
+def next_history(prev: History | None, window, P, P_old, U, U_old) -> History:
+    """The history after a step from (P_old, U_old) to (P, U) (2, nx, ny) on ``window``."""
+    if prev is None or prev.pred.shape[1:] != P.shape or prev.window != window:
+        prev = History(np.zeros((2, ORDER, 2, 1, 1)), 0, 0, window, None)
+    d, n, order, pred = differences(P, P_old, U, U_old, window, prev.d, prev.n)
+    return History(d, n, order, window, pred)
 
 
 class Rolling(NamedTuple):

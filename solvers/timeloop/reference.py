@@ -89,9 +89,9 @@ def run_reference(filt, rc, p: LoopParams, c: ContactModel, rec: Record, win: Wi
                 tang_state = tang_transient(p3, c.dx, c.dy, v, c.mu, gamma_x=gxn, gamma_y=gyn + dxi2 / v,
                                             E=E, nu=nu, state=tang_state, full_output=False, tol=KALKER_TOL)
                 F1, F2 = tang_state.F1, tang_state.F2
-                inside = p3 > 0
-                s1 = float(tang_state.s1[inside].mean())
-                s2 = float(tang_state.s2[inside].mean())
+                n_in = np.count_nonzero(p3 > 0.0)  # mean slip over the contact (zero outside it)
+                s1 = float(tang_state.s1.sum()) / n_in
+                s2 = float(tang_state.s2.sum()) / n_in
                 counters[0] += tang_state.iterations
                 counters[1] = max(counters[1], tang_state.iterations)
                 state = 1.0 if tang_state.stick.any() else 2.0

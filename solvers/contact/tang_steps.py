@@ -1,0 +1,131 @@
+"""Per-step bookkeeping of TANG on the grid in numba (notes in ``solvers.contact.tang``): the
+rigid slip and transport term of the contact elements, the start values from a previous
+solution (warm start, entering elements, predictor), the solution back on the grid, and the
+transient predictor's differences.  One pass each, so that a time step's own work is not lost
+in array calls."""
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+
+@numba.njit(cache=True)
+def rigid_and_transport(ix, iy, shape, kin, ahead, r):
+    """r (N, 2) <- rigid slip times dt at x_I + w_offset dx (``tang.rigid_slip``'s formula),
+    minus the transport term ahead (2, nx, ny) = u(x + dx, t - dt) when it has rows (transient).
+    kin = (dx, dy, v, dt, gamma_x, gamma_y, spin, w_offset)."""
+    dx, dy, v, dt, gx, gy, spin, w_off = kin
+    nx, ny = shape
+    transport = ahead.shape[1] > 0
+    for k in range(ix.shape[0]):
+        xc = (ix[k] - 0.5 * (nx - 1) + w_off) * dx
+        yc = (iy[k] - 0.5 * (ny - 1)) * dy
+        r[k, 0] = (gx - spin * yc) * v * dt
+        r[k, 1] = (gy + spin * xc) * v * dt
+        if transport:
+            r[k, 0] -= ahead[0, ix[k], iy[k]]
+            r[k, 1] -= ahead[1, ix[k], iy[k]]
+
+
+@numba.njit(cache=True)
+def start_values(ix, iy, r, g, P, stick, slip, pred, p0, stick0):
+    """Start of a warm-started solve: p0 (N, 2), stick0 (N,) from the previous solution P (2,
+    nx, ny) and its sets; elements entering the contact start sliding against the rigid slip
+    (the set update corrects); then the predicted change pred (2, nx, ny) is added when it has
+    rows."""
+    predict = pred.shape[1] > 0
+    for k in range(ix.shape[0]):
+        i, j = ix[k], iy[k]
+        p0[k, 0], p0[k, 1] = P[0, i, j], P[1, i, j]
+        stick0[k] = not slip[i, j]
+        if not (stick[i, j] or slip[i, j]):
+            rn = math.hypot(r[k, 0], r[k, 1])
+            if rn > 0.0:
+                p0[k, 0] = -g[k] / rn * r[k, 0]
+                p0[k, 1] = -g[k] / rn * r[k, 1]
+                stick0[k] = False
+        if predict:
+            p0[k, 0] += pred[0, i, j]
+            p0[k, 1] += pred[1, i, j]
+
+
+@numba.njit(cache=True)
+def on_grid(ix, iy, p, s, stick, dt, P, S, st):
+    """The solution on the grid (zero outside the contact): tractions P, slip velocities S = s /
+    dt (2, nx, ny), stick set st.  Returns the force sums (sum p1, sum p2) [Pa]."""
+    f1 = f2 = 0.0
+    for k in range(ix.shape[0]):
+        i, j = ix[k], iy[k]
+        P[0, i, j], P[1, i, j] = p[k, 0], p[k, 1]
+        S[0, i, j], S[1, i, j] = s[k, 0] / dt, s[k, 1] / dt
+        st[i, j] = stick[k]
+        f1 += p[k, 0]
+        f2 += p[k, 1]
+    return f1, f2
+
+
+@numba.njit(cache=True)
+def differences(P, P_old, U, U_old, window, prev, n_prev):
+    """Backward differences of the tractions P and displacements U (2, nx, ny) after a step, on
+    the step's window (i0, i1, j0, j1): d[:, 0] = this step's change, d[:, m] = d[:, m - 1] -
+    prev[:, m - 1] (prev: the previous step's differences (2, K, 2, wx, wy) on the same window,
+    n_prev of them valid; row 0 tractions, 1 displacements).  The extrapolation of order m
+    would have predicted this step with error d[0, m]: the order with the smallest max |d[0, m]|
+    is chosen.  Returns (d (2, K, 2, wx, wy), n valid, order, prediction (2, 2, nx, ny) of the
+    next change on the grid (zero outside the window): the sum of the first `order` d)."""
+    i0, i1, j0, j1 = window
+    wx, wy = i1 - i0 + 1, j1 - j0 + 1
+    K = prev.shape[1]
+    n = min(n_prev, K) + 1
+    d = np.empty((2, K, 2, wx, wy))
+    cur = np.empty((2, 2, wx, wy))   # the difference of the order being formed
+    for c in range(2):
+        for i in range(wx):
+            for j in range(wy):
+                cur[0, c, i, j] = P[c, i0 + i, j0 + j] - P_old[c, i0 + i, j0 + j]
+                cur[1, c, i, j] = U[c, i0 + i, j0 + j] - U_old[c, i0 + i, j0 + j]
+    best, order = math.inf, 0
+    for m in range(n):
+        if m > 0:
+            cur -= prev[:, m - 1]
+        e = np.abs(cur[0]).max()
+        if e < best:
+            best, order = e, m
+        if m < K:
+            d[:, m] = cur
+    if n == 1:              # no history yet: linear
+        order = 1
+    pred = np.zeros((2,) + P.shape)
+    for m in range(order):
+        for a in range(2):
+            for c in range(2):
+                for i in range(wx):
+                    for j in range(wy):
+                        pred[a, c, i0 + i, j0 + j] += d[a, m, c, i, j]
+    return d, min(n, K), order, pred
+
+
+@numba.njit(cache=True)
+def contact_elements(p3):
+    """Indices (ix, iy) of the elements with p3 > 0 and their bounding box (i0, i1, j0, j1)
+    (i0 = -1 without contact)."""
+    nx, ny = p3.shape
+    n = 0
+    i0, i1, j0, j1 = nx, -1, ny, -1
+    for i in range(nx):
+        for j in range(ny):
+            if p3[i, j] > 0.0:
+                n += 1
+                i0, i1, j0, j1 = min(i0, i), max(i1, i), min(j0, j), max(j1, j)
+    ix, iy = np.empty(n, np.int64), np.empty(n, np.int64)
+    k = 0
+    for i in range(nx):
+        for j in range(ny):
+            if p3[i, j] > 0.0:
+                ix[k], iy[k] = i, j
+                k += 1
+    if n == 0:
+        i0 = -1
+    return ix, iy, (i0, i1, j0, j1)
