@@ -163,7 +163,7 @@ stability-map: | $(STAMP) ## the stability screen over STUDY's grid (seconds; ne
 
 # --- calibration of what the thesis does not give (docs/validation, "Calibration"); in this order,
 # each writes its values into the data files (comments kept); none runs in `make` or `make test`
-calibrate: calibrate-profiles calibrate-suspension calibrate-wheel calibrate-suspension ## all calibrations in order (~40 min)
+calibrate: calibrate-wheel calibrate-profiles calibrate-suspension ## all calibrations in order: the wheel section, its running surface, then the damping (~40 min)
 calibrate-profiles: | $(STAMP) ## write geometry/profiles/ (S1002, C20, BV50, 60E1 new; C20 and BV50 worn, fitted to thesis [4.1])
 	$(PY) -m pipeline.calibrate_profiles
 calibrate-coupling: | $(STAMP) ## scan the (2,0,a)/(3,0,a) coupling zero points with the stability screen (the wheel fit's targets)
