@@ -54,7 +54,9 @@ def test_intermediate_offsets_and_the_jump():
     tread, -7.5 and -12.5 mm lie between their neighbours, and the contact
     jumps once (to the field-side flank of the hollow), between -10 and
     -12.5 mm; the flange only touches when the wheelset moves the other way
-    (toward the field side), beyond +20 mm, not from -30 to +20 mm."""
+    (toward the field side), from about +18 mm, not from -30 to +17.5 mm
+    (the onset is a prediction of the calibrated pair: +17.75..+18 mm for the
+    pair fitted to the refitted C20 section, beyond +20 mm for the earlier one)."""
     dys = np.round(np.arange(-0.005, -0.01501, -0.00025), 6)
     ys = np.array(sweep(offsets=dys))
     assert np.all(np.diff(ys) >= -1e-6)
@@ -62,8 +64,8 @@ def test_intermediate_offsets_and_the_jump():
     assert y[-0.005] < y[-0.0075] < y[-0.01] < y[-0.0125] < y[-0.015]
     jumps = np.flatnonzero(np.diff(ys) > 2e-3)
     assert len(jumps) == 1 and -0.0125 <= dys[jumps[0] + 1] and dys[jumps[0]] <= -0.010
-    assert all(v is not None for v in sweep(offsets=np.arange(-0.03, 0.0201, 0.0025)))
-    assert sweep(offsets=[0.026])[0] is None
+    assert all(v is not None for v in sweep(offsets=np.arange(-0.03, 0.0176, 0.0025)))
+    assert sweep(offsets=[0.0185])[0] is None
 
 
 def test_worn_files_are_the_new_profiles_worn_as_their_headers_say():
