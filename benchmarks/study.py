@@ -80,13 +80,20 @@ def run(quick: bool = False) -> str:
     os.environ.setdefault("OMP_NUM_THREADS", "1")
     ensure_case("default")
     res = {}
-    with tempfile.TemporaryDirectory() as d:
-        tmp = Path(d)
-        for early in (True, False):
-            for workers in (1, 2):
-                res[early, workers] = r = _run(tmp, early, workers, quick)
-                print(f"study bench: early_stop={early}, {workers} worker(s): {r['n']} cases in {r['wall']:.0f} s",
-                      file=sys.stderr)
+    before = os.environ.get("SQUEAL_STUDY_DIR")
+    try:
+        with tempfile.TemporaryDirectory() as d:
+            tmp = Path(d)
+            for early in (True, False):
+                for workers in (1, 2):
+                    res[early, workers] = r = _run(tmp, early, workers, quick)
+                    print(f"study bench: early_stop={early}, {workers} worker(s): {r['n']} cases in {r['wall']:.0f} s",
+                          file=sys.stderr)
+    finally:                       # the next suites read the project's studies again
+        if before is None:
+            os.environ.pop("SQUEAL_STUDY_DIR", None)
+        else:
+            os.environ["SQUEAL_STUDY_DIR"] = before
     load = " / ".join(f"{x:.1f}" for x in os.getloadavg())
     rows = []
     for (early, workers), r in res.items():
