@@ -2,7 +2,6 @@
 decay of a stable case to the steady forces, a squealing reduced model and its convergence in
 dt, per-step NORM against the table, the Python reference loop against the numba loop, loss
 of contact, Kalker's transient TANG as the tangential model, the slip-velocity sign."""
-import time
 
 import numpy as np
 import pytest
@@ -161,14 +160,11 @@ def test_kalker_transient_as_the_tangential_model(contact, squealer):
     wheel, g = squealer[DT]
     kw = dict(dt=DT, v=V, gamma_y=GAMMA_Y, duration=25 * DT, stop=None, kick=(0.07, 0.07))
     p = simulate(wheel, g, contact, **kw)
-    t0 = time.perf_counter()
-    k = simulate(wheel, g, contact, tangential="kalker", **kw)
-    per_step = (time.perf_counter() - t0) / 25
+    k = simulate(wheel, g, contact, tangential="kalker", **kw)     # its cost: make bench ("Interaction")
     assert np.all(np.isfinite(k.F)) and np.all(k.state == 2)       # full slip throughout
     assert abs(k.F_ref[1] / p.F_ref[1] - 1) < 1e-3
     assert np.abs(k.F[:, 1] - p.F[:, 1]).max() < 1e-3 * p.F_ref[1]
     assert np.abs(k.F[:, 2] - p.F[:, 2]).max() < 1e-3 * PRELOAD
-    assert per_step < 0.2
 
 
 @pytest.mark.parametrize("sign, grows", [(1.0, False), (-1.0, True)])
