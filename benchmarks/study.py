@@ -22,6 +22,7 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+from unittest import mock
 
 import numpy as np
 
@@ -80,20 +81,14 @@ def run(quick: bool = False) -> str:
     os.environ.setdefault("OMP_NUM_THREADS", "1")
     ensure_case("default")
     res = {}
-    before = os.environ.get("SQUEAL_STUDY_DIR")
-    try:
-        with tempfile.TemporaryDirectory() as d:
-            tmp = Path(d)
-            for early in (True, False):
-                for workers in (1, 2):
-                    res[early, workers] = r = _run(tmp, early, workers, quick)
-                    print(f"study bench: early_stop={early}, {workers} worker(s): {r['n']} cases in {r['wall']:.0f} s",
-                          file=sys.stderr)
-    finally:                       # the next suites read the project's studies again
-        if before is None:
-            os.environ.pop("SQUEAL_STUDY_DIR", None)
-        else:
-            os.environ["SQUEAL_STUDY_DIR"] = before
+    # _run points SQUEAL_STUDY_DIR at the temporary folder; the environment is restored for the next suites
+    with mock.patch.dict(os.environ), tempfile.TemporaryDirectory() as d:
+        tmp = Path(d)
+        for early in (True, False):
+            for workers in (1, 2):
+                res[early, workers] = r = _run(tmp, early, workers, quick)
+                print(f"study bench: early_stop={early}, {workers} worker(s): {r['n']} cases in {r['wall']:.0f} s",
+                      file=sys.stderr)
     load = " / ".join(f"{x:.1f}" for x in os.getloadavg())
     rows = []
     for (early, workers), r in res.items():
