@@ -1,5 +1,6 @@
 """Kalker's active-set Newton method for the Coulomb problem of TANG (notes in
-``solvers.contact.tang``), with its matrix-free Krylov solvers (restarted GMRES, fused CG)."""
+``solvers.contact.tang``): the steady solve with its matrix-free restarted GMRES here, the
+transient one compiled whole with its CG in ``tang_pcg``."""
 from __future__ import annotations
 
 import math
@@ -8,14 +9,13 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
-from .tang_kernels import (gather_slip, jacobian_rows, lift, newton_system, pcg_direction, pcg_update,
-                           precondition_in, precondition_out, scatter, slip_and_sets, slip_geometry,
-                           start_on_bounds, step_and_scatter, update_sets)
-from .tang_operator import TangentialOperator, shifted_inverse
+from .tang_kernels import (gather_slip, jacobian_rows, lift, newton_system, precondition_in, precondition_out,
+                           scatter, slip_and_sets, start_on_bounds, step_and_scatter)
+from .tang_operator import TangentialOperator
+from .tang_pcg import coulomb_transient
 from .tang_state import QUADRATIC, TOL
 
-CG_ABS = 0.1        # CG (transient) also stops when its error estimate is below CG_ABS tol x traction level
-RHO_MIN = 0.25      # ... the contraction per CG step assumed at least (the preconditioned CG's is ~1/4)
+_NO_START = np.zeros((2, 0, 0))   # "no predicted displacements" for the compiled transient solve
 
 
 # ----------------------------------------------------------------------------------------------
@@ -129,116 +129,70 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
     p = np.array(p, dtype=float).reshape(N, 2)
     stick = np.array(stick, dtype=bool)
     bufs = op.buffers
+    if not steady:              # compiled whole (tang_pcg)
+        start = _NO_START if u_start is None else np.ascontiguousarray(u_start, dtype=float)
+        s, u, newton, krylov, converged = coulomb_transient(ix, iy, r, g, p, stick, start, bool(warm), float(tol),
+                                                            int(max_iter), bufs.arrays, op.hat, op.shape[1],
+                                                            op.symbol, op.inv, op.a0, op.scale)
+        return CoulombResult(p, s, stick, u, newton, krylov, converged)
     grid = bufs.conv_in                       # the FFT input arrays, filled in place
     convolve, precondition = bufs.convolve, bufs.precondition
     scale = op.scale
-    mdiag_s = (op.a0 - op.a1 if steady else op.a0) / scale
+    mdiag_s = (op.a0 - op.a1) / scale
     theta = np.arctan2(p[:, 1], p[:, 0])
     t, s, R, b = np.zeros((N, 2)), np.zeros((N, 2)), np.zeros((N, 2)), np.zeros((N, 2))
     D = np.zeros(N)
     sc = np.ones(N)
-    q_lim = math.sqrt(tol / QUADRATIC)           # steps this small are final (quadratic convergence) ...
-    eta_final = min(1e-3, 0.1 * tol / q_lim)      # ... if solved this accurately
-    # start: slip elements on their circle, stick elements inside their bound; the predicted
-    # displacements hold for the start only if it was kept
-    p_level, moved = start_on_bounds(stick, theta, g, s, p, t, D, scale, p.copy())
-    if u_start is not None and moved > 1e-3 * q_lim * p_level:
-        u_start = None
+    q_lim = math.sqrt(tol / QUADRATIC)           # steps this small are final (quadratic convergence)
+    p_level, _ = start_on_bounds(stick, theta, g, s, p, t, D, scale, p.copy())
 
     def slip_of(pp):
         scatter(ix, iy, pp, grid)
         u = convolve(grid)
-        gather_slip(ix, iy, u, steady, r, s)
+        gather_slip(ix, iy, u, True, r, s)
         return u
 
     def J(x):
         lift(ix, iy, stick, t, x, grid)
         u = convolve(grid)
         y = np.empty_like(x)
-        jacobian_rows(ix, iy, stick, t, D, u, steady, scale, x, y)
+        jacobian_rows(ix, iy, stick, t, D, u, True, scale, x, y)
         return y
 
     grid4 = bufs.prec_in
-    inv = [op.inv, None]                          # the preconditioner's symbols: stick, slip (transient)
+    inv = [op.inv]                                # the preconditioner's symbol on stick (None: no stick)
 
-    def Pinv(x):                                  # steady: GMRES's preconditioner (slip: diagonal)
+    def Pinv(x):                                  # GMRES's preconditioner (slip: diagonal)
         precondition_in(ix, iy, stick, t, sc, x, True, False, grid4)
         z = precondition(grid4, inv[0], None)
         y = np.empty_like(x)
         precondition_out(ix, iy, stick, t, sc, D, mdiag_s, z, False, x, y)
         return y
 
-    q_vec, z_vec, d_vec = np.zeros((N, 2)), np.zeros((N, 2)), np.zeros((N, 2))
-
-    def pcg(rtol, atol, kmax):
-        """J x = b by preconditioned CG (transient: J symmetric positive definite), fused kernels.
-        Stops at |r| <= rtol |b|, or when the error left, estimated from the last update max
-        |alpha d| and its ratio rho to the one before (rho >= RHO_MIN) as |alpha d| rho / (1 -
-        rho), is below atol.  Returns (x, steps, error estimate: rtol max |x| or that estimate)."""
-        x = np.zeros((N, 2))
-        rv = b.copy()
-        bn2 = float((b * b).sum())
-        if bn2 == 0.0:
-            return x, 0, 0.0
-        four = inv[1] is not None
-        step_old = math.inf
-        precondition_in(ix, iy, stick, t, sc, rv, False, four, grid4)
-        Z = precondition(grid4, inv[0], inv[1])
-        rz = pcg_direction(ix, iy, stick, t, sc, D, mdiag_s, Z, four, rv, z_vec, 0.0, d_vec, grid)
-        for k in range(1, kmax + 1):
-            U = convolve(grid)
-            rr, dq, step, xmax = pcg_update(ix, iy, stick, t, D, U, False, scale, d_vec, q_vec, rz, x, rv, sc,
-                                            four, grid4)
-            if dq <= 0.0:
-                return x, k, 0.0
-            if rr <= rtol * rtol * bn2:
-                return x, k, rtol * xmax
-            rho = min(max(step / step_old, RHO_MIN), 1.0)     # contraction of the last step
-            est = step * rho / (1.0 - rho) if rho < 1.0 else math.inf
-            if est <= atol:
-                return x, k, est
-            step_old = step
-            Z = precondition(grid4, inv[0], inv[1])
-            rz = pcg_direction(ix, iy, stick, t, sc, D, mdiag_s, Z, four, rv, z_vec, rz, d_vec, grid)
-        return x, kmax, math.inf
-
-    if u_start is not None and not steady:
-        gather_slip(ix, iy, u_start, False, r, s)
-        u = None
-    else:
-        u = slip_of(p)
-    if warm and not steady:         # transient: the sets the (predicted) start implies, as after a step
-        slip_geometry(stick, theta, g, s, p, t, D, scale)
-        to_slip, to_stick = update_sets(stick, theta, g, p, s, 1e-9)
-        if to_slip:
-            u = slip_of(p)
+    u = slip_of(p)
     newton = krylov = 0
     converged = False
     sets_changed = not warm
     n_changed = N if not warm else 0
     few = 2                                     # set changes after which the next step may be final
     ratio = 0.0
+    eta_final = min(1e-3, 0.1 * tol / q_lim)
     for newton in range(1, max_iter + 1):
-        r_max, n_stick, dbar = newton_system(stick, theta, g, s, p, t, D, scale, R, b, mdiag_s, sc)
+        r_max, n_stick, _ = newton_system(stick, theta, g, s, p, t, D, scale, R, b, mdiag_s, sc)
         inv[0] = op.inv if n_stick else None
-        if not steady:
-            inv[1] = shifted_inverse(op.symbol, dbar) if n_stick < N else None
-        if n_changed > few or (newton == 1 and steady):
+        if n_changed > few or newton == 1:
             eta = 1e-2        # the sets are still moving: a rough step
         elif ratio > 0.0:     # expected step from the last step per unit residual: absolute accuracy
             eta = min(0.1, max(eta_final, 0.1 * tol * p_level / max(ratio * r_max, 1e-300)))
         else:
             eta = eta_final
-        if steady:
-            dz, k = _gmres(J, Pinv, b, eta, 40)
-            err = eta * float(np.abs(dz).max(initial=0.0))
-        else:   # absolute stop only where the step may be final (its error budget: 0.1 tol level)
-            dz, k, err = pcg(eta, CG_ABS * tol * p_level if n_changed <= few else 0.0, 200)
+        dz, k = _gmres(J, Pinv, b, eta, 40)
+        err = eta * float(np.abs(dz).max(initial=0.0))
         krylov += k
         change = step_and_scatter(ix, iy, stick, theta, g, dz, p, 0.5, grid)
         ratio = change / max(r_max, 1e-300)
         u = convolve(grid)
-        to_slip, to_stick, p_level = slip_and_sets(ix, iy, u, steady, r, s, stick, theta, g, p, 1e-9)
+        to_slip, to_stick, p_level = slip_and_sets(ix, iy, u, True, r, s, stick, theta, g, p, 1e-9)
         final = change <= tol * p_level or (not sets_changed and change <= q_lim * p_level
                                             and err <= 0.1 * tol * p_level)
         n_changed = to_slip + to_stick

@@ -8,6 +8,7 @@ import threading
 
 import numba
 import numpy as np
+import rocket_fft
 from scipy import fft as sfft
 
 from .influence import cerruti
@@ -90,71 +91,73 @@ def shifted_inverse(symbol, d):
     return out
 
 
-try:                      # pocketfft's own entry points: no argument checking per call (small grids)
-    from scipy.fft._pocketfft import pypocketfft as _pocketfft
-except ImportError:       # pragma: no cover
-    _pocketfft = None
-
-
 class _FFTBuffers:
-    """Preallocated transforms of one operator.  The convolution transforms the last axis (y)
-    of the nx data rows only, then axis x of the zero-padded spectrum; backwards axis x, then
-    y of the nx + 1 rows wanted."""
+    """Preallocated transforms of one operator (``arrays``: the tuple the compiled solver takes).
+    The convolution transforms the last axis (y) of the nx data rows only, then axis x of the
+    zero-padded spectrum; backwards axis x, then y of the nx + 1 rows wanted."""
 
     def __init__(self, op):
         nx, ny = op.shape
         Lx, Ly = op.L
         Tx, Ty = op.T
-        self.nx, self.ny, self.Ly, self.Ty = nx, ny, Ly, Ty
-        self.hat, self.inv = op.hat, op.inv
-        self.rin = np.zeros((2, nx, Ly))
-        self.cin = np.zeros((2, Lx, Ly // 2 + 1), complex)
-        self.cmid = np.zeros_like(self.cin)
-        self.cback = np.zeros_like(self.cin)
-        self.rout = np.zeros((2, nx + 1, Ly))
-        self.tin = np.zeros((4, Tx, Ty))
-        self.tspec = np.zeros((4, Tx, Ty // 2 + 1), complex)
-        self.tout = np.zeros((4, Tx, Ty))
-        self.conv_in = self.rin[:, :, :ny]          # views: fill them in place to skip a copy
-        self.prec_in = self.tin[:, :nx, :ny]
+        self.nx, self.ny = nx, ny
+        self.hat = op.hat
+        rin = np.zeros((2, nx, Ly))
+        cin = np.zeros((2, Lx, Ly // 2 + 1), complex)
+        tin = np.zeros((4, Tx, Ty))
+        self.arrays = (rin, cin, np.zeros_like(cin), np.zeros_like(cin), np.zeros((2, nx + 1, Ly)),
+                       tin, np.zeros((4, Tx, Ty // 2 + 1), complex), np.zeros((4, Tx, Ty)))
+        self.conv_in = rin[:, :, :ny]            # views: fill them in place to skip a copy
+        self.prec_in = tin[:, :nx, :ny]
 
     def convolve(self, P):
-        nx, ny = self.nx, self.ny
         if P is not self.conv_in:
-            self.rin[:, :, :ny] = P
-        if _pocketfft is None:   # pragma: no cover
-            F = sfft.rfft2(P, s=self.cin.shape[1:2] + (self.Ly,), workers=1)
-            _kernel_product(F, self.hat)
-            return sfft.irfft2(F, s=self.cin.shape[1:2] + (self.Ly,), workers=1)[:, : nx + 1, :ny]
-        _pocketfft.r2c(self.rin, (2,), True, 0, self.cin[:, :nx], 1)
-        _pocketfft.c2c(self.cin, (1,), True, 0, self.cmid, 1)
-        _kernel_product(self.cmid, self.hat)
-        _pocketfft.c2c(self.cmid, (1,), False, 2, self.cback, 1)
-        _pocketfft.c2r(self.cback[:, : nx + 1], (2,), self.Ly, False, 2, self.rout, 1)
-        return self.rout[:, :, :ny]
+            self.conv_in[:] = P
+        return fft_convolve(self.arrays, self.hat, self.ny)
 
     def precondition(self, R, inv_a, inv_b):
         """Fields 0, 1 of R (4, nx, ny) with the symbol inv_a, 2, 3 with inv_b; a pair whose
         symbol is None is skipped (left as it is in the output)."""
-        nx, ny = self.nx, self.ny
-        lo = 0 if inv_a is not None else 2
-        hi = 4 if inv_b is not None else 2
-        tin, tspec, tout = self.tin[lo:hi], self.tspec[lo:hi], self.tout[lo:hi]
         if R is not self.prec_in:
-            tin[:, :nx, :ny] = R[lo:hi]
-        if _pocketfft is None:   # pragma: no cover
-            tspec[:] = sfft.rfft2(tin, workers=1)
-        else:
-            _pocketfft.r2c(tin, (1, 2), True, 0, tspec, 1)
-        if inv_a is not None:
-            _kernel_product(tspec[:2], inv_a)
-        if inv_b is not None:
-            _kernel_product(tspec[hi - 2:], inv_b)
-        if _pocketfft is None:   # pragma: no cover
-            tout[:] = sfft.irfft2(tspec, s=tin.shape[1:], workers=1)
-        else:
-            _pocketfft.c2r(tspec, (1, 2), self.Ty, False, 2, tout, 1)
-        return self.tout[:, :nx, :ny]
+            self.prec_in[:] = R
+        a = inv_a if inv_a is not None else _NO_SYMBOL
+        b = inv_b if inv_b is not None else _NO_SYMBOL
+        return fft_precondition(self.arrays, a, b, inv_a is not None, inv_b is not None, self.nx, self.ny)
+
+
+_AX_X, _AX_Y, _AX_XY = np.array([1]), np.array([2]), np.array([1, 2])
+_NO_SYMBOL = np.zeros((3, 1, 1))    # stands for a symbol not applied
+
+
+@numba.njit(cache=True)
+def fft_convolve(bufs, hat, ny):
+    """u (2, nx + 1, ny) on the grid and one row ahead of the tractions in bufs[0][:, :, :ny]
+    (a view into bufs[4]): pocketfft (rocket-fft) transforms of _FFTBuffers' arrays."""
+    rin, cin, cmid, cback, rout = bufs[0], bufs[1], bufs[2], bufs[3], bufs[4]
+    nx = rin.shape[1]
+    rocket_fft.r2c(rin, cin[:, :nx], _AX_Y, True, 1.0, 1)
+    rocket_fft.c2c(cin, cmid, _AX_X, True, 1.0, 1)
+    _kernel_product(cmid, hat)
+    rocket_fft.c2c(cmid, cback, _AX_X, False, 1.0 / cin.shape[1], 1)
+    rocket_fft.c2r(cback[:, : nx + 1], rout, _AX_Y, False, 1.0 / rout.shape[2], 1)
+    return rout[:, :, :ny]
+
+
+@numba.njit(cache=True)
+def fft_precondition(bufs, inv_a, inv_b, use_a, use_b, nx, ny):
+    """The Strang-circulant symbols on the preconditioner's fields bufs[5][:, :nx, :ny]: fields
+    0, 1 with inv_a (use_a), 2, 3 with inv_b (use_b).  Returns a view (4, nx, ny) into bufs[7]."""
+    tin, tspec, tout = bufs[5], bufs[6], bufs[7]
+    lo = 0 if use_a else 2
+    hi = 4 if use_b else 2
+    if hi > lo:
+        rocket_fft.r2c(tin[lo:hi], tspec[lo:hi], _AX_XY, True, 1.0, 1)
+        if use_a:
+            _kernel_product(tspec[0:2], inv_a)
+        if use_b:
+            _kernel_product(tspec[2:4], inv_b)
+        rocket_fft.c2r(tspec[lo:hi], tout[lo:hi], _AX_XY, False, 1.0 / (tin.shape[1] * tin.shape[2]), 1)
+    return tout[:, :nx, :ny]
 
 
 @numba.njit(cache=True)
