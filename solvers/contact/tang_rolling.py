@@ -10,7 +10,8 @@ import numpy as np
 from .tang_newton import solve_coulomb
 from .tang_operator import tangential_operator
 from .tang_state import Rolling, TangentialContact, TangOptions, next_history
-from .tang_steps import contact_elements, on_grid, rigid_and_transport, start_values
+from .tang_steps import (contact_elements, on_grid, predicted_start, rigid_and_transport, start_values,
+                         window_fields)
 
 
 _EMPTY = np.zeros((2, 0, 0))   # "no array" for the numba kernels
@@ -28,6 +29,16 @@ def _grow(box, shape, pad):
 def _inside(w, v):
     """Window w inside window v."""
     return v is not None and w[0] >= v[0] and w[1] <= v[1] and w[2] >= v[2] and w[3] <= v[3]
+
+
+def _tractions(state: TangentialContact):
+    """(p1, p2) of a solution as one (2, nx, ny) array."""
+    return state.P if state.P is not None else np.stack([state.p1, state.p2])
+
+
+def _displacements(state: TangentialContact):
+    """(u1, u2) of a solution as one (2, nx, ny) array."""
+    return state.U if state.U is not None else np.stack([state.u1, state.u2])
 
 
 def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | None,
@@ -58,7 +69,7 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
     P, S = np.zeros((2,) + shape), np.zeros((2,) + shape)
     st = np.zeros(shape, bool)
     transient_prev = (not steady) and warm is not None and warm.p1.shape == shape
-    P_old = np.stack([warm.p1, warm.p2]) if warm is not None and warm.p1.shape == shape else None
+    P_old = _tractions(warm) if warm is not None and warm.p1.shape == shape else None
     ahead = _EMPTY
     if transient_prev:                         # transport term: -u(x + dx, t - dt)
         ahead = warm.u_ahead
@@ -70,7 +81,7 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
         S[0][ix, iy], S[1][ix, iy] = r[:, 0] / dt, r[:, 1] / dt
         zero = np.zeros(shape)
         return TangentialContact(P[0], P[1], st, contact.copy(), S[0], S[1], zero, zero.copy(), 0.0, 0.0, 0, True,
-                                 0, np.zeros((2,) + shape), None, (0, nx - 1, 0, ny - 1))
+                                 0, np.zeros((2,) + shape), None, (0, nx - 1, 0, ny - 1), P)
     i0, i1, j0, j1 = win
     op = tangential_operator((i1 - i0 + 1, j1 - j0 + 1), dx, dy, E, nu)
     g = mu * p3[ix, iy]
@@ -82,8 +93,7 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
             and _inside(win, warm.window)
         start_values(ix, iy, r, g, P_old, warm.stick, warm.slip, h.pred[0] if predict else _EMPTY, p0, stick0)
         if predict:                            # predictor: polynomial extrapolation of the last steps
-            u_start = np.stack([warm.u1[i0:i1 + 1, j0:j1 + 1], warm.u2[i0:i1 + 1, j0:j1 + 1]]) \
-                + h.pred[1][:, i0:i1 + 1, j0:j1 + 1]
+            u_start = predicted_start(_displacements(warm), h.pred, win)
     res = solve_coulomb(op, ix - i0, iy - j0, r, g, p0, stick0, steady=steady, tol=tol, warm=warm is not None,
                         u_start=u_start)
     if not res.converged:
@@ -96,13 +106,10 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
         ahead = np.ascontiguousarray(u[:, 1:])
     else:
         valid = win
-        U = np.zeros((2, nx, ny))
-        ahead = np.zeros((2, nx, ny))
-        U[:, i0:i1 + 1, j0:j1 + 1] = res.u[:, : i1 - i0 + 1]
-        ahead[:, i0:i1 + 1, j0:j1 + 1] = res.u[:, 1:]
+        U, ahead = window_fields(res.u, win, shape)
     history = None
     if transient_prev:
-        history = next_history(warm.history, win, P, P_old, U, np.stack([warm.u1, warm.u2]))
+        history = next_history(warm.history, win, P, P_old, U, _displacements(warm))
     dA = dx * dy
     return TangentialContact(P[0], P[1], st, contact & ~st, S[0], S[1], U[0], U[1], f1 * dA, f2 * dA, res.newton,
-                             res.converged, res.krylov, ahead, history, valid)
+                             res.converged, res.krylov, ahead, history, valid, P, U)

@@ -30,6 +30,8 @@ class TangentialContact(NamedTuple):
     u_ahead: np.ndarray | None = None    # (2, nx, ny): u(x + dx, t), the next step's transport term
     history: "History | None" = None    # transient: the last steps' changes (the next step's predictor)
     window: tuple | None = None          # (i0, i1, j0, j1): rows/columns where u1, u2, u_ahead are valid
+    P: np.ndarray | None = None          # (2, nx, ny): p1, p2 are its rows (the next step reads it whole)
+    U: np.ndarray | None = None          # (2, nx, ny): u1, u2 are its rows
 
 
 class History(NamedTuple):

@@ -129,3 +129,32 @@ def contact_elements(p3):
     if n == 0:
         i0 = -1
     return ix, iy, (i0, i1, j0, j1)
+
+
+@numba.njit(cache=True)
+def predicted_start(U, pred, window):
+    """The predicted displacements of a warm start on the window (i0, i1, j0, j1): U + pred[1] there
+    (U (2, nx, ny): the previous step's; pred: History.pred)."""
+    i0, i1, j0, j1 = window
+    out = np.empty((2, i1 - i0 + 1, j1 - j0 + 1))
+    for a in range(2):
+        for i in range(i0, i1 + 1):
+            for j in range(j0, j1 + 1):
+                out[a, i - i0, j - j0] = U[a, i, j] + pred[1, a, i, j]
+    return out
+
+
+@numba.njit(cache=True)
+def window_fields(u, window, shape):
+    """The displacements of a solve on the window (u (2, wx + 1, wy): grid rows and one ahead) on the
+    whole grid, zero outside the window: U (2, nx, ny) and the next step's transport term ahead =
+    u(x + dx) (2, nx, ny)."""
+    i0, i1, j0, j1 = window
+    U = np.zeros((2,) + shape)
+    ahead = np.zeros((2,) + shape)
+    for a in range(2):
+        for i in range(i0, i1 + 1):
+            for j in range(j0, j1 + 1):
+                U[a, i, j] = u[a, i - i0, j - j0]
+                ahead[a, i, j] = u[a, i - i0 + 1, j - j0]
+    return U, ahead
