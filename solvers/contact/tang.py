@@ -63,8 +63,9 @@ previous solution's tractions and sets) cut the Newton steps to a few; in
 transient rolling the start is extrapolated from the last steps (a polynomial
 of order 0 to 3: whichever would have predicted the last step best) and its
 sets updated as after a Newton step, so a time step takes one Newton step, two
-or three where elements change set.  The per-step bookkeeping on the grid is
-compiled (tang_steps).  Timings and scaling: benchmarks/contact.py; agreement
+or three where elements change set.  The transient solve runs whole in numba
+(tang_pcg, the FFTs through rocket-fft), and the per-step bookkeeping on the
+grid is compiled (tang_steps).  Timings and scaling: benchmarks/contact.py; agreement
 with the former dense solver (tests/contact/tang_dense.py) and with CONTACT:
 docs/validation/30_contact.md.
 """
@@ -74,8 +75,9 @@ import numpy as np
 
 # The code lives one idea a module: tang_state (solution, problem, options, predictor history),
 # tang_operator (FFT influence products, preconditioner), tang_kernels (numba element kernels),
-# tang_newton (the active-set Newton method and its Krylov solvers), tang_rolling (one step's
-# problem on the contact's window), tang_steps (its bookkeeping on the grid, numba).
+# tang_newton (the active-set Newton method, steady: GMRES), tang_pcg (transient: the Newton
+# method with its CG compiled whole), tang_rolling (one step's problem on the contact's window),
+# tang_steps (its bookkeeping on the grid, numba).
 from .tang_newton import CoulombResult, solve_coulomb  # noqa: F401
 from .tang_operator import TangentialOperator, shifted_inverse, tangential_operator  # noqa: F401
 from .tang_rolling import solve_rolling
