@@ -80,30 +80,35 @@ def differences(P, P_old, U, U_old, window, prev, n_prev):
     K = prev.shape[1]
     n = min(n_prev, K) + 1
     d = np.empty((2, K, 2, wx, wy))
-    cur = np.empty((2, 2, wx, wy))   # the difference of the order being formed
+    err = np.zeros(n)        # max |d[0, m]| over the window: the error of order m's prediction
     for c in range(2):
         for i in range(wx):
             for j in range(wy):
-                cur[0, c, i, j] = P[c, i0 + i, j0 + j] - P_old[c, i0 + i, j0 + j]
-                cur[1, c, i, j] = U[c, i0 + i, j0 + j] - U_old[c, i0 + i, j0 + j]
+                dp = P[c, i0 + i, j0 + j] - P_old[c, i0 + i, j0 + j]
+                du = U[c, i0 + i, j0 + j] - U_old[c, i0 + i, j0 + j]
+                for m in range(n):
+                    if m > 0:
+                        dp -= prev[0, m - 1, c, i, j]
+                        du -= prev[1, m - 1, c, i, j]
+                    err[m] = max(err[m], abs(dp))
+                    if m < K:
+                        d[0, m, c, i, j] = dp
+                        d[1, m, c, i, j] = du
     best, order = math.inf, 0
     for m in range(n):
-        if m > 0:
-            cur -= prev[:, m - 1]
-        e = np.abs(cur[0]).max()
-        if e < best:
-            best, order = e, m
-        if m < K:
-            d[:, m] = cur
+        if err[m] < best:
+            best, order = err[m], m
     if n == 1:              # no history yet: linear
         order = 1
     pred = np.zeros((2,) + P.shape)
-    for m in range(order):
-        for a in range(2):
-            for c in range(2):
-                for i in range(wx):
-                    for j in range(wy):
-                        pred[a, c, i0 + i, j0 + j] += d[a, m, c, i, j]
+    for a in range(2):
+        for c in range(2):
+            for i in range(wx):
+                for j in range(wy):
+                    v = 0.0
+                    for m in range(order):
+                        v += d[a, m, c, i, j]
+                    pred[a, c, i0 + i, j0 + j] = v
     return d, min(n, K), order, pred
 
 
