@@ -40,6 +40,9 @@ MAP_CASES = $(shell sed -n 's/^cases *= *\[\(.*\)\].*/\1/p' pipeline/studies/map
 export SQUEAL_BUILD_DIR := $(abspath $(BUILD))
 export VTK_DEFAULT_OPENGL_WINDOW ?= vtkEGLRenderWindow
 export OMP_NUM_THREADS ?= 1
+# the stages are separate processes importing the same ~500 modules: let Python cache their bytecode
+# (with PYTHONDONTWRITEBYTECODE set, every stage compiles them again, ~2.5 s each)
+unexport PYTHONDONTWRITEBYTECODE
 
 # Each stage's sources, DEPS_<stage>: the repository files its code reaches, computed from the
 # imports by pipeline/deps.py into $(BUILD)/deps.mk, regenerated when a package's .py changes.
