@@ -116,12 +116,9 @@ $(W)/modes.npz: $(W)/mesh.json $(WFILE) $(DEPS_modes) | $(CORE)
 $(W)/shapes/gallery.png: $(W)/modes.npz $(WFILE) $(DEPS_shapes) | $(STAMP)
 	$(PY) -m pipeline shapes --wheel $(WHEEL)
 
-# --- rail and contact stages: the greens stage needs the rail's mesh only (not rail.npz), so it
-# runs beside the rail stage's dispersion and receptances (the report waits for them)
-$(R)/section.msh: $(RFILE) $(DEPS_rail_mesh) | $(CORE)
-	$(PY) -m pipeline rail_mesh --rail $(RAIL)
-
-$(R)/rail.npz: $(R)/section.msh $(RFILE) $(DEPS_rail) | $(CORE)
+# --- rail and contact stages (the greens stage needs the rail's section mesh, not rail.npz: it meshes
+# the section as the rail stage does and runs beside it)
+$(R)/rail.npz: $(RFILE) $(DEPS_rail) | $(CORE)
 	$(PY) -m pipeline rail --rail $(RAIL)
 
 $(C)/contact.npz: $(CFILE) $(WFILE) $(RFILE) $(PROFILES) $(DEPS_contact) | $(CORE)
@@ -134,7 +131,7 @@ JIT := $(BUILD)/.numba-warm
 $(JIT): | $(CORE) $(W)/modes.npz
 	$(PY) -m pipeline.warm && touch $@
 
-$(C)/greens.npz: $(CFILE) $(WFILE) $(RFILE) $(PROFILES) $(W)/modes.npz $(R)/section.msh $(DEPS_greens) | $(CORE)
+$(C)/greens.npz: $(CFILE) $(WFILE) $(RFILE) $(PROFILES) $(W)/modes.npz $(DEPS_greens) | $(CORE)
 	$(PY) -m pipeline greens --case $(CASE)
 
 $(C)/simulate.npz: $(CFILE) $(WFILE) $(RFILE) $(C)/contact.npz $(C)/greens.npz $(DEPS_simulate) | $(CORE) $(JIT)
@@ -156,12 +153,12 @@ $(C)/listen.npz: $(CFILE) $(WFILE) $(RFILE) $(C)/radiate.npz $(C)/simulate.npz $
 FORCE:
 
 # the listening section is in the report when `make listen` has run (as the studies)
-# parallel Make starts the jobs in the order of these lists, depth first (the rules are read in this
-# order; the recipe's rule has none of its own, else its prerequisites would come first): the rest of
-# pip, the rail, the wheel modes and the greens stage, the numba warm-up ($(JIT), listed for the order
-# only), the renders, the contact, then simulate -> radiate
-$(BUILD)/report/$(CASE)/report.md: | $(STAMP)
-$(BUILD)/report/$(CASE)/report.md: $(CFILE) $(R)/rail.npz $(C)/greens.npz $(W)/modes.npz | $(JIT)
+# parallel Make starts the jobs in the order of these lists (depth first, the rules read in this
+# order; the recipe's rule has none of its own, else its prerequisites would come first; the
+# order-only ones are here for that order only): the wheel mesh, the rest of pip, the rail, the wheel
+# modes, the greens stage, the numba warm-up, the renders, the contact, simulate -> radiate
+$(BUILD)/report/$(CASE)/report.md: | $(W)/mesh.json $(STAMP)
+$(BUILD)/report/$(CASE)/report.md: $(CFILE) $(R)/rail.npz $(W)/modes.npz $(C)/greens.npz | $(JIT)
 $(BUILD)/report/$(CASE)/report.md: $(W)/shapes/gallery.png $(C)/contact.npz $(C)/simulate.npz $(C)/radiate.npz $(WFILE) $(RFILE) $(DEPS_report) $(wildcard $(BUILD)/studies/*/summary.md) $(wildcard $(C)/listen.npz)
 $(BUILD)/report/$(CASE)/report.md:
 	$(PY) -m pipeline report --case $(CASE)

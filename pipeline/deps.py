@@ -37,7 +37,6 @@ ENTRIES = {
     "mesh": ("pipeline.wheel_stage", "run_mesh", "wheel"),
     "modes": ("pipeline.wheel_stage", "run_modes", "wheel"),
     "shapes": ("pipeline.wheel_stage", "run_shapes", "wheel"),
-    "rail_mesh": ("pipeline.rail_stage", "run_rail_mesh", "rail"),
     "rail": ("pipeline.rail_stage", "run_rail", "rail"),
     "contact": ("pipeline.contact_stage", "run_contact", "case"),
     "greens": ("pipeline.greens_stage", "run_greens", "case"),

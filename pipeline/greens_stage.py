@@ -26,8 +26,8 @@ rail waves into the causal kernels the time loop uses, for one case.
 Artifact: build/cases/<case>/greens.npz and greens_wheel.png, greens_rail.png.
 The cache key is the resolved configuration (wheel, rail, case settings)
 plus the wheel-modes artifact's hash and the rail parameters' hash (rail.npz's own:
-the stage needs the rail's section.msh only, not rail.npz, so that it runs beside
-the rail stage).
+the stage needs the rail's section mesh, not rail.npz, so that it runs beside the
+rail stage).
 """
 from __future__ import annotations
 

@@ -37,33 +37,25 @@ def load_rail_params(name: str) -> tuple[dict, str]:
     return load_geometry(path, RAIL, check_rail, "rail", paths.available(paths.rails())), str(path)
 
 
-def write_rail_mesh(p: dict, path, keep_same: bool = False) -> bool:
-    """Mesh the half cross-section (``geometry.rail_mesh.mesh_rail``, deterministic) atomically into
-    ``path``; with ``keep_same`` an existing identical file is left untouched, time stamp included
-    (Make's greens rule depends on it).  Returns whether the file was written."""
+def rail_mesh(p: dict):
+    """build/rails/<rail>/section.msh of the rail parameters ``p``: meshed (``geometry.rail_mesh.mesh_rail``,
+    deterministic) and written atomically unless the file there is identical, which is then left
+    untouched.  The rail and greens stages both call it (they run side by side: the greens stage
+    needs the mesh, not rail.npz); returns the path."""
     import filecmp
     import shutil
     import tempfile
 
     from geometry.rail_mesh import mesh_rail
 
+    path = paths.rail_dir(p["name"]) / "section.msh"
     with tempfile.TemporaryDirectory() as d:
         new = f"{d}/section.msh"
         mesh_rail(p, new)
-        if keep_same and path.exists() and filecmp.cmp(new, path, shallow=False):
-            return False
-        with artifacts.atomic_write(path) as tmp:
-            shutil.copyfile(new, tmp)
-    return True
-
-
-def run_rail_mesh(name: str) -> None:
-    """The rail's section.msh alone: what the greens stage needs of the rail (the moving kernel is
-    built from it), so that it runs beside the rest of the rail stage."""
-    p, _ = load_rail_params(name)
-    t0 = time.perf_counter()
-    write_rail_mesh(p, paths.rail_dir(name) / "section.msh")
-    log.info("rail mesh %s in %.1f s -> %s", name, time.perf_counter() - t0, paths.rail_dir(name) / "section.msh")
+        if not (path.exists() and filecmp.cmp(new, path, shallow=False)):
+            with artifacts.atomic_write(path) as tmp:
+                shutil.copyfile(new, tmp)
+    return path
 
 
 def run_rail(name: str) -> dict:
@@ -72,8 +64,7 @@ def run_rail(name: str) -> dict:
     p, _ = load_rail_params(name)
     out = paths.rail_dir(name)
     t0 = time.perf_counter()
-    write_rail_mesh(p, out / "section.msh", keep_same=True)   # as `rail_mesh` made it, under Make
-    model = build_rail_model(p, str(out / "section.msh"))
+    model = build_rail_model(p, str(rail_mesh(p)))
     t1 = time.perf_counter()
     freqs = np.geomspace(RAIL_F_MIN_HZ, F_MAX_HZ, N_FREQ)
     arrays = stage_arrays(model, freqs, np.linspace(0.0, X_MAX, N_DIST))
