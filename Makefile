@@ -9,6 +9,9 @@ CASE  ?= default
 BUILD ?= build
 PY    := .venv/bin/python
 STAMP := .venv/.setup-stamp
+# the computing stages' packages (requirements-core.txt), installed first: those stages start while
+# pip installs the rest (renders, report, studies, listening, tests) beside them
+CORE  ?= $(dir $(STAMP)).core-stamp
 # pipeline/deps.py uses the standard library only: it runs before the venv exists
 DEPS_PY := $(firstword $(wildcard $(PY)) /usr/bin/python3)
 CFILE := pipeline/cases/$(CASE).toml
@@ -40,6 +43,9 @@ MAP_CASES = $(shell sed -n 's/^cases *= *\[\(.*\)\].*/\1/p' pipeline/studies/map
 export SQUEAL_BUILD_DIR := $(abspath $(BUILD))
 export VTK_DEFAULT_OPENGL_WINDOW ?= vtkEGLRenderWindow
 export OMP_NUM_THREADS ?= 1
+# the stages are separate processes importing the same ~500 modules: let Python cache their bytecode
+# (with PYTHONDONTWRITEBYTECODE set, every stage compiles them again, ~2.5 s each)
+unexport PYTHONDONTWRITEBYTECODE
 
 # Each stage's sources, DEPS_<stage>: the repository files its code reaches, computed from the
 # imports by pipeline/deps.py into $(BUILD)/deps.mk, regenerated when a package's .py changes.
@@ -81,10 +87,21 @@ help: ## list the targets
 
 # the venv uses Debian's pip (python3-pip, seen through --system-site-packages: no ensurepip copy) and
 # installs without byte-compiling every file (Python compiles what is imported, when it is: ~half the time)
-$(STAMP): requirements.txt constraints.txt .apt-stamp
+PIP := $(PY) -m pip install -q --no-compile --disable-pip-version-check -c constraints.txt
+# the checks import numpy (its version) and pyvista (the renders) and only find the others, which the
+# stages import (importing them here is ~1 s each, the core's on the setup's critical path)
+MISSING = import importlib.util as u; m = [n for n in '$(1)'.split() if u.find_spec(n) is None]; assert not m, f'not installed: {m}'
+$(CORE): requirements-core.txt constraints.txt .apt-stamp
 	@test -x $(PY) || /usr/bin/python3 -m venv --system-site-packages --without-pip .venv
-	$(PY) -m pip install -q --no-compile --disable-pip-version-check -c constraints.txt -r requirements.txt
-	$(PY) -c "import dolfinx, slepc4py, gmsh, numba, rocket_fft, pyvista, numpy, dask, distributed, pydantic; assert numpy.__version__.startswith('1.24'), numpy.__version__"
+	$(PIP) -r requirements-core.txt
+	$(PY) -c "$(call MISSING,numba rocket_fft pydantic matplotlib tqdm); import numpy; assert numpy.__version__.startswith('1.24'), numpy.__version__"
+	@touch $@
+
+# the rest, beside the first stages: pip keeps the installed core packages (they satisfy the pins),
+# so nothing a running stage imports is replaced
+$(STAMP): requirements.txt $(CORE)
+	$(PIP) -r requirements.txt
+	$(PY) -c "$(call MISSING,dolfinx slepc4py gmsh dask distributed pyfar); import pyvista"
 	@touch $@
 
 setup: $(STAMP) ## install Debian packages and the Python venv (stamp files; reruns only when the lists change)
@@ -93,39 +110,41 @@ check: | $(STAMP) ## validate the CASE file and its wheel and rail (or WHEEL=, R
 	$(PY) -m pipeline check --wheel $(WHEEL) --rail $(RAIL) --case $(CASE)
 
 # --- wheel stages
-$(W)/mesh.json: $(WFILE) $(DEPS_mesh) | $(STAMP)
+$(W)/mesh.json: $(WFILE) $(DEPS_mesh) | $(CORE)
 	$(PY) -m pipeline mesh --wheel $(WHEEL)
 
-$(W)/modes.npz: $(W)/mesh.json $(WFILE) $(DEPS_modes) | $(STAMP)
+$(W)/modes.npz: $(W)/mesh.json $(WFILE) $(DEPS_modes) | $(CORE)
 	$(PY) -m pipeline modes --wheel $(WHEEL)
 
+# one llvmpipe (Mesa) render thread: the same pixels, ~7 % less CPU (it runs beside other stages)
 $(W)/shapes/gallery.png: $(W)/modes.npz $(WFILE) $(DEPS_shapes) | $(STAMP)
-	$(PY) -m pipeline shapes --wheel $(WHEEL)
+	LP_NUM_THREADS=1 $(PY) -m pipeline shapes --wheel $(WHEEL)
 
-# --- rail and contact stages
-$(R)/rail.npz: $(RFILE) $(DEPS_rail) | $(STAMP)
+# --- rail and contact stages (the greens stage needs the rail's section mesh, not rail.npz: it meshes
+# the section as the rail stage does and runs beside it)
+$(R)/rail.npz: $(RFILE) $(DEPS_rail) | $(CORE)
 	$(PY) -m pipeline rail --rail $(RAIL)
 
-$(C)/contact.npz: $(CFILE) $(WFILE) $(RFILE) $(PROFILES) $(DEPS_contact) | $(STAMP)
+$(C)/contact.npz: $(CFILE) $(WFILE) $(RFILE) $(PROFILES) $(DEPS_contact) | $(CORE)
 	$(PY) -m pipeline contact --case $(CASE)
 
 # numba's compiled code of the simulate stage, made while the rail stage runs (pipeline/warm.py; once per build
 # folder: a stage whose code changed since compiles for itself, as without it); after the wheel modes, so that with
 # parallel jobs it never holds up the greens stage's inputs
 JIT := $(BUILD)/.numba-warm
-$(JIT): | $(STAMP) $(W)/modes.npz
+$(JIT): | $(CORE) $(W)/modes.npz
 	$(PY) -m pipeline.warm && touch $@
 
-$(C)/greens.npz: $(CFILE) $(WFILE) $(RFILE) $(PROFILES) $(W)/modes.npz $(R)/rail.npz $(DEPS_greens) | $(STAMP)
+$(C)/greens.npz: $(CFILE) $(WFILE) $(RFILE) $(PROFILES) $(W)/modes.npz $(DEPS_greens) | $(CORE)
 	$(PY) -m pipeline greens --case $(CASE)
 
-$(C)/simulate.npz: $(CFILE) $(WFILE) $(RFILE) $(C)/contact.npz $(C)/greens.npz $(DEPS_simulate) | $(STAMP) $(JIT)
+$(C)/simulate.npz: $(CFILE) $(WFILE) $(RFILE) $(C)/contact.npz $(C)/greens.npz $(DEPS_simulate) | $(CORE) $(JIT)
 	$(PY) -m pipeline simulate --case $(CASE)
 
-$(C)/radiate.npz: $(CFILE) $(WFILE) $(RFILE) $(PROFILES) $(W)/modes.npz $(C)/simulate.npz $(DEPS_radiate) | $(STAMP)
+$(C)/radiate.npz: $(CFILE) $(WFILE) $(RFILE) $(PROFILES) $(W)/modes.npz $(C)/simulate.npz $(DEPS_radiate) | $(CORE)
 	$(PY) -m pipeline radiate --case $(CASE)
 
-$(C)/stability.npz: $(CFILE) $(WFILE) $(RFILE) $(C)/contact.npz $(C)/greens.npz $(DEPS_stability) | $(STAMP)
+$(C)/stability.npz: $(CFILE) $(WFILE) $(RFILE) $(C)/contact.npz $(C)/greens.npz $(DEPS_stability) | $(CORE)
 	$(PY) -m pipeline stability --case $(CASE)
 
 # the receiver: the case's [listener] table, or DISTANCE=, HEIGHT= (m); ALLOW_SILENT=1 for a case that does not
@@ -138,7 +157,14 @@ $(C)/listen.npz: $(CFILE) $(WFILE) $(RFILE) $(C)/radiate.npz $(C)/simulate.npz $
 FORCE:
 
 # the listening section is in the report when `make listen` has run (as the studies)
-$(BUILD)/report/$(CASE)/report.md: $(CFILE) $(W)/modes.npz $(W)/shapes/gallery.png $(R)/rail.npz $(C)/contact.npz $(C)/greens.npz $(C)/simulate.npz $(C)/radiate.npz $(WFILE) $(RFILE) $(DEPS_report) $(wildcard $(BUILD)/studies/*/summary.md) $(wildcard $(C)/listen.npz) | $(STAMP)
+# parallel Make starts the jobs in the order of these lists (depth first, the rules read in this
+# order; the recipe's rule has none of its own, else its prerequisites would come first; the
+# order-only ones are here for that order only): the wheel mesh, the rest of pip, the rail, the wheel
+# modes, the greens stage, the numba warm-up, the renders, the contact, simulate -> radiate
+$(BUILD)/report/$(CASE)/report.md: | $(W)/mesh.json $(STAMP)
+$(BUILD)/report/$(CASE)/report.md: $(CFILE) $(R)/rail.npz $(W)/modes.npz $(C)/greens.npz | $(JIT)
+$(BUILD)/report/$(CASE)/report.md: $(W)/shapes/gallery.png $(C)/contact.npz $(C)/simulate.npz $(C)/radiate.npz $(WFILE) $(RFILE) $(DEPS_report) $(wildcard $(BUILD)/studies/*/summary.md) $(wildcard $(C)/listen.npz)
+$(BUILD)/report/$(CASE)/report.md:
 	$(PY) -m pipeline report --case $(CASE)
 
 mesh: $(W)/mesh.json ## Gmsh cross-section of WHEEL (default: CASE's wheel) -> build/wheels/WHEEL/section.msh

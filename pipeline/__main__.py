@@ -28,6 +28,9 @@ STAGES = {
 }
 
 
+# the stages that run numba code (pipeline/numba_setup.py)
+NUMBA_STAGES = {"contact", "greens", "simulate", "stability", "stability_map", "listen", "study"}
+
 # stage -> (module of pipeline/, function, the CLI argument it takes)
 RUNNERS = {
     "mesh": ("wheel_stage", "run_mesh", "wheel"),
@@ -73,6 +76,11 @@ def main(argv=None) -> int:
 
     from .artifacts import ArtifactError
     from .config import ConfigError
+
+    if args.stage in NUMBA_STAGES:
+        from .numba_setup import skip_special
+
+        skip_special()
 
     try:
         if args.stage == "check":

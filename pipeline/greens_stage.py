@@ -25,7 +25,9 @@ rail waves into the causal kernels the time loop uses, for one case.
 
 Artifact: build/cases/<case>/greens.npz and greens_wheel.png, greens_rail.png.
 The cache key is the resolved configuration (wheel, rail, case settings)
-plus the wheel-modes and rail artifacts' own hashes.
+plus the wheel-modes artifact's hash and the rail parameters' hash (rail.npz's own:
+the stage needs the rail's section mesh, not rail.npz, so that it runs beside the
+rail stage).
 """
 from __future__ import annotations
 
@@ -52,6 +54,7 @@ RAIL_LAGS = 4096  # moving-kernel length (0.147 s, 2 m at 50 km/h); its decay is
 
 
 def greens_inputs(case: str):
+    from .config import config_hash
     from .profiles import case_contact
 
     c, pw, pr, geo = case_contact(case)  # the contact point of the profiles, as the contact stage's
@@ -59,10 +62,10 @@ def greens_inputs(case: str):
     yw, yr = geo.contact.y_wheel, rail_point(c["rail"], pr, geo.contact.y_rail, where)  # yr: the rail model's node
     modes, mprov = artifacts.load_npz(paths.wheel_dir(c["wheel"]) / "modes.npz", "wheel-modes", pw,
                                       make_target=f"modes WHEEL={c['wheel']}")
-    rprov = _rail_provenance(c["rail"], pr)
+    # "rail": the rail parameters' hash, the one rail.npz carries (the rail stage saves with them)
     cfg = {"case": {k: c[k] for k in ("contact", "kinematics", "time")}, "wheel_modes": mprov["config_hash"],
            "running_surfaces": geo.config,
-           "rail": rprov["config_hash"], "rail_nt": RAIL_NT, "rail_lags": RAIL_LAGS, "rail_f_max": RAIL_F_MAX,
+           "rail": config_hash(pr), "rail_nt": RAIL_NT, "rail_lags": RAIL_LAGS, "rail_f_max": RAIL_F_MAX,
            "rail_f_taper": RAIL_F_TAPER, "wheel_band_limit": WHEEL_BAND_LIMIT, "wheel_decay_db": WHEEL_DECAY_DB,
            "kropp_taps": KROPP_TAPS, "kropp_fit_tol": KROPP_FIT_TOL}
     return c, pw, pr, modes, (yw, yr, geo.contact.y_rail), cfg
@@ -90,24 +93,6 @@ def rail_point(name: str, pr: dict, y_r: float, where: str = "") -> float:
             f"head node |y| = {1e3 * ys[i]:.3f} mm of contact.y (allowed {1e3 * RAIL_POINT_TOL:.1f} mm): "
             f"add {y_r:.5f} to contact.y and rebuild the rail (make rail RAIL={name})"))
     return float(np.copysign(ys[i], y_r))
-
-
-_RAIL_PROV: dict = {}
-
-
-def _rail_provenance(rail: str, pr: dict) -> dict:
-    """The rail artifact's provenance, checked against the rail parameters; remembered per
-    process for the same file (path, size, modification time) and parameters: the check reads
-    the whole 57 MB artifact, and the studies ask for it once per case."""
-    from .config import config_hash
-
-    path = paths.rail_dir(rail) / "rail.npz"
-    st = path.stat() if path.exists() else None
-    key = (str(path), st and st.st_mtime_ns, st and st.st_size, config_hash(pr))
-    if st is None or key not in _RAIL_PROV:
-        _, prov = artifacts.load_npz(path, "rail", pr, make_target=f"rail RAIL={rail}")
-        _RAIL_PROV[key] = prov
-    return _RAIL_PROV[key]
 
 
 def wheel_greens(pw: dict, modes: dict, y_w: float, dt: float) -> dict:
@@ -141,7 +126,7 @@ def wheel_greens(pw: dict, modes: dict, y_w: float, dt: float) -> dict:
 def rail_greens(pr: dict, rail_hash: str, y_r: float, v: float, dt: float) -> tuple[dict, bool]:
     """The moving rail kernel and its companions at y_r, from the shared cache
     build/rails/<rail>/moving/ or built there (pipeline/rail_kernel.py); also whether it came
-    from the cache.  rail_hash: the rail artifact's configuration hash."""
+    from the cache.  rail_hash: the rail parameters' configuration hash (rail.npz's)."""
     from .rail_kernel import rail_kernel
 
     grid = {"n_t": RAIL_NT, "n_lags": RAIL_LAGS, "f_max": RAIL_F_MAX, "f_taper": RAIL_F_TAPER}

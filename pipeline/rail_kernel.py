@@ -11,7 +11,8 @@ written atomically (pipeline.artifacts) and loaded by the greens stage of every 
 same key: a new wheel, friction or creepage never recomputes it, and the two mirror-image
 points y^R = +-12 mm of the default and dy10 cases share one file (the kernel at -y^R is the
 one at +y^R with g23, g32 negated, exactly: ``solvers.moving_kernel.mirror``).  Make knows the
-inputs through the greens rule (rail.npz, the case file, the sources); the key catches the
+inputs through the greens rule (the rail file, the case file, the sources; the stage meshes the
+rail section itself, ``rail_stage.rail_mesh``); the key catches the
 rest (a changed mesh or model code makes a new key, so a stale kernel is never loaded).
 
 Building it: the waveguide model of the rail (``build_rail_model``, ~5 s), its wave table on
@@ -63,10 +64,13 @@ def kernel_path(rail: str, cfg: dict):
 
 def rail_kernel(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, grid: dict, taper) -> tuple[dict, bool]:
     """The rail arrays of the greens artifact at y_r (signed), from the cache or built and
-    cached; returns (arrays, loaded_from_cache).  rail_hash: the rail artifact's configuration
+    cached; returns (arrays, loaded_from_cache).  rail_hash: the rail parameters' (rail.npz's) configuration
     hash; ``taper(f)`` rolls the receptance off."""
     from solvers.moving_kernel import mirror
 
+    from .rail_stage import rail_mesh
+
+    rail_mesh(pr)                                   # section.msh, as the rail stage beside it makes it
     cfg = kernel_config(pr, rail_hash, y_r, v, dt, grid)
     path = kernel_path(pr["name"], cfg)
     cached = path.exists()

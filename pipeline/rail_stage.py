@@ -37,17 +37,34 @@ def load_rail_params(name: str) -> tuple[dict, str]:
     return load_geometry(path, RAIL, check_rail, "rail", paths.available(paths.rails())), str(path)
 
 
-def run_rail(name: str) -> dict:
+def rail_mesh(p: dict):
+    """build/rails/<rail>/section.msh of the rail parameters ``p``: meshed (``geometry.rail_mesh.mesh_rail``,
+    deterministic) and written atomically unless the file there is identical, which is then left
+    untouched.  The rail and greens stages both call it (they run side by side: the greens stage
+    needs the mesh, not rail.npz); returns the path."""
+    import filecmp
+    import shutil
+    import tempfile
+
     from geometry.rail_mesh import mesh_rail
 
+    path = paths.rail_dir(p["name"]) / "section.msh"
+    with tempfile.TemporaryDirectory() as d:
+        new = f"{d}/section.msh"
+        mesh_rail(p, new)
+        if not (path.exists() and filecmp.cmp(new, path, shallow=False)):
+            with artifacts.atomic_write(path) as tmp:
+                shutil.copyfile(new, tmp)
+    return path
+
+
+def run_rail(name: str) -> dict:
     from .rail_model import build_rail_model, stage_arrays
 
     p, _ = load_rail_params(name)
     out = paths.rail_dir(name)
     t0 = time.perf_counter()
-    with artifacts.atomic_write(out / "section.msh") as tmp:
-        mesh_rail(p, str(tmp))
-    model = build_rail_model(p, str(out / "section.msh"))
+    model = build_rail_model(p, str(rail_mesh(p)))
     t1 = time.perf_counter()
     freqs = np.geomspace(RAIL_F_MIN_HZ, F_MAX_HZ, N_FREQ)
     arrays = stage_arrays(model, freqs, np.linspace(0.0, X_MAX, N_DIST))

@@ -88,7 +88,6 @@ def _kernel_sum(K, A, coef, step, n_k, n_t, eps):
     zr = np.empty(M)
     zi = np.empty(M)
     length = np.empty(M, np.int64)
-    order = np.empty(M, np.int64)
     for m in range(nf):
         # active length of every wave: |a| |z|^L / (1 - |z|) < eps from L on
         for n in range(M):
@@ -104,7 +103,7 @@ def _kernel_sum(K, A, coef, step, n_k, n_t, eps):
                 rem = amax / (1.0 - math.exp(-d)) if d < 700.0 else amax
                 L = math.log(rem / eps) / d + 1.0 if rem > eps else 0.0
                 length[n] = n_k if L >= n_k else int(L)
-        order[:] = np.argsort(-length)
+        order = np.argsort(-length)               # a new array, not order[:] = ...: that copy's shape check costs ~2.5 s of compiling
         n_act = 0
         while n_act < M and length[order[n_act]] > 0:
             n_act += 1
