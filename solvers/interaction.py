@@ -133,8 +133,9 @@ Drivers
   lateral velocity added to the rigid slip: gamma_y + sign (xi2[n] -
   xi2[n-1])/dx; FFT-based Newton-Krylov, warm-started and extrapolated from
   the last steps, tolerance KALKER_TOL, displacements on the contact's window
-  only: about 0.6 ms per step on the default contact in steady rolling, 1.3 ms
-  in a squeal limit cycle, docs/benchmarks.md).
+  only, the Newton-CG solve compiled whole: about 0.5 ms per step on the
+  default contact in the first second, 0.7 ms in a squeal limit cycle,
+  docs/benchmarks.md).
 
 Output: every ``store_every``-th step (decimated history) plus the last
 ``final`` seconds at full rate (for the spectra); early stop when a limit
