@@ -292,3 +292,24 @@ def slip_and_sets(ix, iy, u, steady, r, s, stick, theta, g, p, rel):
     for k in range(p.shape[0]):
         level = max(level, abs(p[k, 0]), abs(p[k, 1]))
     return n_slip, n_stick, level
+
+
+@numba.njit(cache=True)
+def forcing_term(rough, ratio, r_max, tol, p_level, eta_final):
+    """The Krylov tolerance of a Newton step: 1e-2 while the sets still move (rough); else the
+    accuracy the expected step (last step per unit residual, ratio, times the residual r_max)
+    needs for an absolute error of 0.1 tol p_level, between eta_final and 0.1."""
+    if rough:
+        return 1e-2
+    if ratio > 0.0:
+        return min(0.1, max(eta_final, 0.1 * tol * p_level / max(ratio * r_max, 1e-300)))
+    return eta_final
+
+
+@numba.njit(cache=True)
+def step_is_final(change, err, p_level, tol, q_lim, sets_changed):
+    """Kalker's stop after a Newton step of largest change `change` [Pa] with Krylov error err:
+    the step is below tol times the traction level, or (sets unchanged) below q_lim times it with
+    the Krylov error below 0.1 tol (quadratic convergence makes the remaining error smaller)."""
+    return change <= tol * p_level or (not sets_changed and change <= q_lim * p_level
+                                       and err <= 0.1 * tol * p_level)

@@ -9,10 +9,10 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
-from .tang_kernels import (gather_slip, jacobian_rows, lift, newton_system, precondition_in, precondition_out,
-                           scatter, slip_and_sets, start_on_bounds, step_and_scatter)
+from .tang_kernels import (forcing_term, gather_slip, jacobian_rows, lift, newton_system, precondition_in,
+                           precondition_out, scatter, slip_and_sets, start_on_bounds, step_and_scatter, step_is_final)
 from .tang_operator import TangentialOperator
-from .tang_pcg import coulomb_transient
+from .tang_pcg import FEW, coulomb_transient
 from .tang_state import QUADRATIC, TOL
 
 _NO_START = np.zeros((2, 0, 0))   # "no predicted displacements" for the compiled transient solve
@@ -174,18 +174,12 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
     converged = False
     sets_changed = not warm
     n_changed = N if not warm else 0
-    few = 2                                     # set changes after which the next step may be final
     ratio = 0.0
     eta_final = min(1e-3, 0.1 * tol / q_lim)
     for newton in range(1, max_iter + 1):
         r_max, n_stick, _ = newton_system(stick, theta, g, s, p, t, D, scale, R, b, mdiag_s, sc)
         inv[0] = op.inv if n_stick else None
-        if n_changed > few or newton == 1:
-            eta = 1e-2        # the sets are still moving: a rough step
-        elif ratio > 0.0:     # expected step from the last step per unit residual: absolute accuracy
-            eta = min(0.1, max(eta_final, 0.1 * tol * p_level / max(ratio * r_max, 1e-300)))
-        else:
-            eta = eta_final
+        eta = forcing_term(n_changed > FEW or newton == 1, ratio, r_max, tol, p_level, eta_final)
         dz, k = _gmres(J, Pinv, b, eta, 40)
         err = eta * float(np.abs(dz).max(initial=0.0))
         krylov += k
@@ -193,8 +187,7 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
         ratio = change / max(r_max, 1e-300)
         u = convolve(grid)
         to_slip, to_stick, p_level = slip_and_sets(ix, iy, u, True, r, s, stick, theta, g, p, 1e-9)
-        final = change <= tol * p_level or (not sets_changed and change <= q_lim * p_level
-                                            and err <= 0.1 * tol * p_level)
+        final = step_is_final(change, err, p_level, tol, q_lim, sets_changed)
         n_changed = to_slip + to_stick
         sets_changed = n_changed > 0
         if not sets_changed and final:

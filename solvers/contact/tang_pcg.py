@@ -10,14 +10,15 @@ import math
 import numba
 import numpy as np
 
-from .tang_kernels import (gather_slip, newton_system, pcg_direction, pcg_update, precondition_in, scatter,
-                           slip_and_sets, slip_geometry, start_on_bounds, step_and_scatter, update_sets)
+from .tang_kernels import (forcing_term, gather_slip, newton_system, pcg_direction, pcg_update, precondition_in,
+                           scatter, slip_and_sets, slip_geometry, start_on_bounds, step_and_scatter, step_is_final,
+                           update_sets)
 from .tang_operator import _shifted_inverse, fft_convolve, fft_precondition
 from .tang_state import QUADRATIC
 
 CG_ABS = 0.1        # CG also stops when its error estimate is below CG_ABS tol x traction level
 RHO_MIN = 0.25      # ... the contraction per CG step assumed at least (the preconditioned CG's is ~1/4)
-FEW = 2             # set changes after which the next Newton step may be final
+FEW = 2             # set changes after which the next Newton step may be final (steady solve too)
 
 
 @numba.njit(cache=True)
@@ -109,12 +110,7 @@ def coulomb_transient(ix, iy, r, g, p, stick, u_start, warm, tol, max_iter, bufs
         r_max, n_stick, dbar = newton_system(stick, theta, g, s, p, t, D, scale, R, b, mdiag, sc)
         if n_stick < N:
             _shifted_inverse(symbol, dbar, inv_slip)
-        if n_changed > FEW:
-            eta = 1e-2        # the sets are still moving: a rough step
-        elif ratio > 0.0:     # expected step from the last step per unit residual: absolute accuracy
-            eta = min(0.1, max(eta_final, 0.1 * tol * p_level / max(ratio * r_max, 1e-300)))
-        else:
-            eta = eta_final
+        eta = forcing_term(n_changed > FEW, ratio, r_max, tol, p_level, eta_final)
         # absolute stop only where the step may be final (its error budget: 0.1 tol level)
         atol = CG_ABS * tol * p_level if n_changed <= FEW else 0.0
         k, err = _pcg(ix, iy, stick, t, sc, D, mdiag, scale, b, eta, atol, 200, bufs, hat, ny, inv, inv_slip,
@@ -124,8 +120,7 @@ def coulomb_transient(ix, iy, r, g, p, stick, u_start, warm, tol, max_iter, bufs
         ratio = change / max(r_max, 1e-300)
         u = fft_convolve(bufs, hat, ny)
         to_slip, to_stick, p_level = slip_and_sets(ix, iy, u, False, r, s, stick, theta, g, p, 1e-9)
-        final = change <= tol * p_level or (not sets_changed and change <= q_lim * p_level
-                                            and err <= 0.1 * tol * p_level)
+        final = step_is_final(change, err, p_level, tol, q_lim, sets_changed)
         n_changed = to_slip + to_stick
         sets_changed = n_changed > 0
         if not sets_changed and final:
