@@ -103,7 +103,7 @@ def _kernel_sum(K, A, coef, step, n_k, n_t, eps):
                 rem = amax / (1.0 - math.exp(-d)) if d < 700.0 else amax
                 L = math.log(rem / eps) / d + 1.0 if rem > eps else 0.0
                 length[n] = n_k if L >= n_k else int(L)
-        order = np.argsort(-length)               # a new array, not order[:] = ...: that copy's shape check costs ~2.5 s of compiling
+        order = np.argsort(-length)    # a new array: "order[:] = ..." costs ~2.5 s of compiling (its shape check)
         n_act = 0
         while n_act < M and length[order[n_act]] > 0:
             n_act += 1
@@ -158,8 +158,9 @@ def _kernel_sum(K, A, coef, step, n_k, n_t, eps):
 
 
 def mirror(g: np.ndarray) -> np.ndarray:
-    """The kernel of the mirror-image head point (y^R -> -y^R): g23 and g32 change sign."""
-    out = np.array(g, float, copy=True)
+    """The kernel (or receptance: the dtype is kept) of the mirror-image head point (y^R -> -y^R):
+    g23 and g32 change sign."""
+    out = np.array(g, copy=True)
     out[..., 0, 1] *= -1.0
     out[..., 1, 0] *= -1.0
     return out

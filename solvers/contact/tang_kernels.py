@@ -307,9 +307,15 @@ def forcing_term(rough, ratio, r_max, tol, p_level, eta_final):
 
 
 @numba.njit(cache=True)
-def step_is_final(change, err, p_level, tol, q_lim, sets_changed):
-    """Kalker's stop after a Newton step of largest change `change` [Pa] with Krylov error err:
-    the step is below tol times the traction level, or (sets unchanged) below q_lim times it with
-    the Krylov error below 0.1 tol (quadratic convergence makes the remaining error smaller)."""
-    return change <= tol * p_level or (not sets_changed and change <= q_lim * p_level
-                                       and err <= 0.1 * tol * p_level)
+def after_step(ix, iy, u, steady, r, s, stick, theta, g, p, change, err, tol, q_lim, sets_changed):
+    """After a Newton step of largest change `change` [Pa] and Krylov error err, from the
+    displacements u of the new tractions: the slip and the set update (slip_and_sets), then
+    Kalker's stop: no element changed set, and the step is below tol times the traction level,
+    or (the sets were already unchanged before it) below q_lim times it with the Krylov error
+    below 0.1 tol (quadratic convergence makes the remaining error smaller).  Returns (moved to
+    slip, elements that changed set, traction level, converged)."""
+    to_slip, to_stick, p_level = slip_and_sets(ix, iy, u, steady, r, s, stick, theta, g, p, 1e-9)
+    final = change <= tol * p_level or (not sets_changed and change <= q_lim * p_level
+                                        and err <= 0.1 * tol * p_level)
+    n_changed = to_slip + to_stick
+    return to_slip, n_changed, p_level, n_changed == 0 and final

@@ -9,8 +9,8 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
-from .tang_kernels import (forcing_term, gather_slip, jacobian_rows, lift, newton_system, precondition_in,
-                           precondition_out, scatter, slip_and_sets, start_on_bounds, step_and_scatter, step_is_final)
+from .tang_kernels import (after_step, forcing_term, gather_slip, jacobian_rows, lift, newton_system, precondition_in,
+                           precondition_out, scatter, start_on_bounds, step_and_scatter)
 from .tang_operator import TangentialOperator
 from .tang_pcg import FEW, coulomb_transient
 from .tang_state import QUADRATIC, TOL
@@ -186,12 +186,10 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
         change = step_and_scatter(ix, iy, stick, theta, g, dz, p, 0.5, grid)
         ratio = change / max(r_max, 1e-300)
         u = convolve(grid)
-        to_slip, to_stick, p_level = slip_and_sets(ix, iy, u, True, r, s, stick, theta, g, p, 1e-9)
-        final = step_is_final(change, err, p_level, tol, q_lim, sets_changed)
-        n_changed = to_slip + to_stick
+        to_slip, n_changed, p_level, converged = after_step(ix, iy, u, True, r, s, stick, theta, g, p, change, err,
+                                                            tol, q_lim, sets_changed)
         sets_changed = n_changed > 0
-        if not sets_changed and final:
-            converged = True
+        if converged:
             break
         if to_slip:                   # projected tractions: the slip follows
             u = slip_of(p)

@@ -10,9 +10,8 @@ import math
 import numba
 import numpy as np
 
-from .tang_kernels import (forcing_term, gather_slip, newton_system, pcg_direction, pcg_update, precondition_in,
-                           scatter, slip_and_sets, slip_geometry, start_on_bounds, step_and_scatter, step_is_final,
-                           update_sets)
+from .tang_kernels import (after_step, forcing_term, gather_slip, newton_system, pcg_direction, pcg_update,
+                           precondition_in, scatter, slip_geometry, start_on_bounds, step_and_scatter, update_sets)
 from .tang_operator import _shifted_inverse, fft_convolve, fft_precondition
 from .tang_state import QUADRATIC
 
@@ -119,12 +118,10 @@ def coulomb_transient(ix, iy, r, g, p, stick, u_start, warm, tol, max_iter, bufs
         change = step_and_scatter(ix, iy, stick, theta, g, x, p, 0.5, bufs[0][:, :, :ny])
         ratio = change / max(r_max, 1e-300)
         u = fft_convolve(bufs, hat, ny)
-        to_slip, to_stick, p_level = slip_and_sets(ix, iy, u, False, r, s, stick, theta, g, p, 1e-9)
-        final = step_is_final(change, err, p_level, tol, q_lim, sets_changed)
-        n_changed = to_slip + to_stick
+        to_slip, n_changed, p_level, converged = after_step(ix, iy, u, False, r, s, stick, theta, g, p, change, err,
+                                                            tol, q_lim, sets_changed)
         sets_changed = n_changed > 0
-        if not sets_changed and final:
-            converged = True
+        if converged:
             break
         if to_slip:                   # projected tractions: the slip follows
             u = _slip_of(ix, iy, p, r, s, bufs, hat, ny)

@@ -31,14 +31,10 @@ def _inside(w, v):
     return v is not None and w[0] >= v[0] and w[1] <= v[1] and w[2] >= v[2] and w[3] <= v[3]
 
 
-def _tractions(state: TangentialContact):
-    """(p1, p2) of a solution as one (2, nx, ny) array."""
-    return state.P if state.P is not None else np.stack([state.p1, state.p2])
-
-
-def _displacements(state: TangentialContact):
-    """(u1, u2) of a solution as one (2, nx, ny) array."""
-    return state.U if state.U is not None else np.stack([state.u1, state.u2])
+def _stacked(both, a, b):
+    """A pair of a solution's fields as one (2, nx, ny) array: the stacked one it keeps (P, U), or
+    its two rows stacked (a solution made elsewhere)."""
+    return both if both is not None else np.stack([a, b])
 
 
 def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | None,
@@ -69,7 +65,7 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
     P, S = np.zeros((2,) + shape), np.zeros((2,) + shape)
     st = np.zeros(shape, bool)
     transient_prev = (not steady) and warm is not None and warm.p1.shape == shape
-    P_old = _tractions(warm) if warm is not None and warm.p1.shape == shape else None
+    P_old = _stacked(warm.P, warm.p1, warm.p2) if warm is not None and warm.p1.shape == shape else None
     ahead = _EMPTY
     if transient_prev:                         # transport term: -u(x + dx, t - dt)
         ahead = warm.u_ahead
@@ -93,7 +89,7 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
             and _inside(win, warm.window)
         start_values(ix, iy, r, g, P_old, warm.stick, warm.slip, h.pred[0] if predict else _EMPTY, p0, stick0)
         if predict:                            # predictor: polynomial extrapolation of the last steps
-            u_start = predicted_start(_displacements(warm), h.pred, win)
+            u_start = predicted_start(_stacked(warm.U, warm.u1, warm.u2), h.pred, win)
     res = solve_coulomb(op, ix - i0, iy - j0, r, g, p0, stick0, steady=steady, tol=tol, warm=warm is not None,
                         u_start=u_start)
     if not res.converged:
@@ -109,7 +105,7 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
         U, ahead = window_fields(res.u, win, shape)
     history = None
     if transient_prev:
-        history = next_history(warm.history, win, P, P_old, U, _displacements(warm))
+        history = next_history(warm.history, win, P, P_old, U, _stacked(warm.U, warm.u1, warm.u2))
     dA = dx * dy
     return TangentialContact(P[0], P[1], st, contact & ~st, S[0], S[1], U[0], U[1], f1 * dA, f2 * dA, res.newton,
                              res.converged, res.krylov, ahead, history, valid, P, U)
