@@ -9,12 +9,17 @@ import numpy as np
 
 from .tang_newton import solve_coulomb
 from .tang_operator import tangential_operator
-from .tang_state import Rolling, TangentialContact, TangOptions, next_history
-from .tang_steps import (contact_elements, on_grid, predicted_start, rigid_and_transport, start_values,
-                         window_fields)
+from .tang_pcg import transient_step
+from .tang_state import ORDER, History, Rolling, TangentialContact, TangOptions
+from .tang_steps import contact_elements, on_grid, rigid_and_transport, start_values, window_fields
 
 
 _EMPTY = np.zeros((2, 0, 0))   # "no array" for the numba kernels
+_NO_SET = np.zeros((0, 0), bool)
+_NO_PREDICTION = np.zeros((2, 2, 0, 0))
+_NEW_HISTORY = np.zeros((2, ORDER, 2, 1, 1))     # predictor differences: none valid yet
+_NO_HISTORY = np.zeros((2, ORDER, 2, 0, 0))      # ... not kept (steady, or no previous step)
+_MAX_ITER = 200
 PAD = 1                     # elements around the contact's bounding box when it outgrew the window
 
 
@@ -62,8 +67,6 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
             win = old
         else:
             win = padded
-    P, S = np.zeros((2,) + shape), np.zeros((2,) + shape)
-    st = np.zeros(shape, bool)
     transient_prev = (not steady) and warm is not None and warm.p1.shape == shape
     P_old = _stacked(warm.P, warm.p1, warm.p2) if warm is not None and warm.p1.shape == shape else None
     ahead = _EMPTY
@@ -71,41 +74,64 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
         ahead = warm.u_ahead
         if ahead is None or not _inside(win, warm.window):
             ahead = tangential_operator(shape, dx, dy, E, nu).displacements(P_old)[:, 1:]
-    r = np.empty((N, 2))                       # rigid slip times dt at x_I + w_offset dx, transport
-    rigid_and_transport(ix, iy, shape, (dx, dy, v, dt, gamma_x, gamma_y, spin, w_offset), ahead, r)
+    kin = (dx, dy, v, dt, gamma_x, gamma_y, spin, w_offset)
     if N == 0 or mu <= 0.0:                    # no contact or no friction: traction-free, all slip
+        r = np.empty((N, 2))
+        rigid_and_transport(ix, iy, shape, kin, ahead, r)
+        P, S = np.zeros((2,) + shape), np.zeros((2,) + shape)
         S[0][ix, iy], S[1][ix, iy] = r[:, 0] / dt, r[:, 1] / dt
         zero = np.zeros(shape)
-        return TangentialContact(P[0], P[1], st, contact.copy(), S[0], S[1], zero, zero.copy(), 0.0, 0.0, 0, True,
-                                 0, np.zeros((2,) + shape), None, (0, nx - 1, 0, ny - 1), P)
+        return TangentialContact(P[0], P[1], np.zeros(shape, bool), contact.copy(), S[0], S[1], zero, zero.copy(),
+                                 0.0, 0.0, 0, True, 0, np.zeros((2,) + shape), None, (0, nx - 1, 0, ny - 1), P)
     i0, i1, j0, j1 = win
     op = tangential_operator((i1 - i0 + 1, j1 - j0 + 1), dx, dy, E, nu)
-    g = mu * p3[ix, iy]
-    u_start = None
-    p0, stick0 = np.zeros((N, 2)), np.ones(N, bool)
-    if P_old is not None:                      # warm start; entering elements start sliding
-        h = warm.history
-        predict = transient_prev and h is not None and h.order > 0 and h.window == win \
-            and _inside(win, warm.window)
-        start_values(ix, iy, r, g, P_old, warm.stick, warm.slip, h.pred[0] if predict else _EMPTY, p0, stick0)
-        if predict:                            # predictor: polynomial extrapolation of the last steps
-            u_start = predicted_start(_stacked(warm.U, warm.u1, warm.u2), h.pred, win)
-    res = solve_coulomb(op, ix - i0, iy - j0, r, g, p0, stick0, steady=steady, tol=tol, warm=warm is not None,
-                        u_start=u_start)
-    if not res.converged:
+    h = warm.history if P_old is not None else None
+    predict = transient_prev and h is not None and h.order > 0 and h.window == win and _inside(win, warm.window)
+    if steady:
+        P, S, st, U, ahead, f1, f2, newton, krylov, converged = _steady(p3, ix, iy, win, kin, mu, op, P_old, warm,
+                                                                        tol)
+    else:                                      # compiled whole (tang_pcg)
+        U_old = _stacked(warm.U, warm.u1, warm.u2) if transient_prev else _EMPTY
+        if transient_prev and h is not None and h.pred.shape[1:] == P_old.shape and h.window == win:
+            hist_d, hist_n = h.d, h.n
+        elif transient_prev:                   # a new history (first step, or a new window)
+            hist_d, hist_n = _NEW_HISTORY, 0
+        else:
+            hist_d, hist_n = _NO_HISTORY, 0
+        P, S, st, U, ahead, f1, f2, newton, krylov, converged, d, n, order, pred = transient_step(
+            p3, ix, iy, win, kin, mu, ahead, _EMPTY if P_old is None else P_old,
+            _NO_SET if P_old is None else warm.stick, _NO_SET if P_old is None else warm.slip,
+            h.pred if predict else _NO_PREDICTION, U_old, hist_d, hist_n, tol, _MAX_ITER, op.buffers.arrays, op.hat,
+            op.symbol, op.inv, op.a0, op.scale)
+    if not converged:
         warnings.warn("TANG: stick/slip sets not converged", RuntimeWarning)
-    f1, f2 = on_grid(ix, iy, res.p, res.s, res.stick, dt, P, S, st)
+    valid = win
     if full_output and win != (0, nx - 1, 0, ny - 1):
         u = tangential_operator(shape, dx, dy, E, nu).displacements(P)
         valid = (0, nx - 1, 0, ny - 1)
         U = u[:, :nx].copy()
         ahead = np.ascontiguousarray(u[:, 1:])
-    else:
-        valid = win
-        U, ahead = window_fields(res.u, win, shape)
-    history = None
-    if transient_prev:
-        history = next_history(warm.history, win, P, P_old, U, _stacked(warm.U, warm.u1, warm.u2))
+    history = History(d, n, order, win, pred) if transient_prev else None
     dA = dx * dy
-    return TangentialContact(P[0], P[1], st, contact & ~st, S[0], S[1], U[0], U[1], f1 * dA, f2 * dA, res.newton,
-                             res.converged, res.krylov, ahead, history, valid, P, U)
+    return TangentialContact(P[0], P[1], st, contact & ~st, S[0], S[1], U[0], U[1], f1 * dA, f2 * dA, newton,
+                             converged, krylov, ahead, history, valid, P, U)
+
+
+def _steady(p3, ix, iy, win, kin, mu, op, P_old, warm, tol):
+    """The steady solve on the window (GMRES in Python, ``tang_newton``), returning the fields
+    of ``tang_pcg.transient_step`` up to ``converged``."""
+    nx, ny = p3.shape
+    i0, _, j0, _ = win
+    N = ix.size
+    r = np.empty((N, 2))
+    rigid_and_transport(ix, iy, (nx, ny), kin, _EMPTY, r)
+    g = mu * p3[ix, iy]
+    p0, stick0 = np.zeros((N, 2)), np.ones(N, bool)
+    if P_old is not None:                      # warm start; entering elements start sliding
+        start_values(ix, iy, r, g, P_old, warm.stick, warm.slip, _EMPTY, p0, stick0)
+    res = solve_coulomb(op, ix - i0, iy - j0, r, g, p0, stick0, steady=True, tol=tol, warm=warm is not None)
+    P, S = np.zeros((2, nx, ny)), np.zeros((2, nx, ny))
+    st = np.zeros((nx, ny), bool)
+    f1, f2 = on_grid(ix, iy, res.p, res.s, res.stick, kin[3], P, S, st)
+    U, ahead = window_fields(res.u, win, (nx, ny))
+    return P, S, st, U, ahead, f1, f2, res.newton, res.krylov, res.converged

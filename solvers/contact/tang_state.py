@@ -6,8 +6,6 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .tang_steps import differences
-
 W_OFFSET = 1.0 / 6.0        # rigid slip evaluated at x_I + W_OFFSET dx (see the module notes)
 QUADRATIC = 10.0            # bound of the Newton steps' quadratic constant (relative), for stopping
 TOL = 1e-8                  # default: Newton step <= TOL * traction level, no set change
@@ -48,14 +46,6 @@ class History(NamedTuple):
 
 
 ORDER = 3                   # highest order of the predictor (cubic)
-
-
-def next_history(prev: History | None, window, P, P_old, U, U_old) -> History:
-    """The history after a step from (P_old, U_old) to (P, U) (2, nx, ny) on ``window``."""
-    if prev is None or prev.pred.shape[1:] != P.shape or prev.window != window:
-        prev = History(np.zeros((2, ORDER, 2, 1, 1)), 0, 0, window, None)
-    d, n, order, pred = differences(P, P_old, U, U_old, window, prev.d, prev.n)
-    return History(d, n, order, window, pred)
 
 
 class Rolling(NamedTuple):
