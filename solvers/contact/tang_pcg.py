@@ -197,11 +197,9 @@ def transient_step(p3, ix, iy, win, kin, mu, ahead, P_old, stick_old, slip_old, 
             u_start = predicted_start(U_old, pred, win)
     s, u, newton, krylov, converged = coulomb_transient(ix - i0, iy - j0, r, g, p, stick, u_start, warm, tol,
                                                         max_iter, bufs, hat, j1 - j0 + 1, symbol, inv, a0, scale)
-    P, S = np.zeros((2, nx, ny)), np.zeros((2, nx, ny))
-    st = np.zeros((nx, ny), np.bool_)
-    f1, f2 = on_grid(ix, iy, p, s, stick, kin[3], P, S, st)
+    P, S, st, sl, f1, f2 = on_grid(ix, iy, p, s, stick, kin[3], (nx, ny))
     U, ahead_new = window_fields(u, win, (nx, ny))
     d, n, order, pred_new = hist_d, 0, 0, pred[:, :, :0, :0]
     if hist_d.shape[3] > 0:
         d, n, order, pred_new = differences(P, P_old, U, U_old, win, hist_d, hist_n)
-    return P, S, st, U, ahead_new, f1, f2, newton, krylov, converged, d, n, order, pred_new
+    return P, S, st, sl, U, ahead_new, f1, f2, newton, krylov, converged, d, n, order, pred_new

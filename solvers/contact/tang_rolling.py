@@ -51,7 +51,6 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
     p3 = np.asarray(p3, dtype=float)
     shape = p3.shape
     nx, ny = shape
-    contact = p3 > 0.0
     dt = dx / v
     ix, iy, box = contact_elements(p3)
     N = ix.size
@@ -81,14 +80,14 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
         P, S = np.zeros((2,) + shape), np.zeros((2,) + shape)
         S[0][ix, iy], S[1][ix, iy] = r[:, 0] / dt, r[:, 1] / dt
         zero = np.zeros(shape)
-        return TangentialContact(P[0], P[1], np.zeros(shape, bool), contact.copy(), S[0], S[1], zero, zero.copy(),
+        return TangentialContact(P[0], P[1], np.zeros(shape, bool), p3 > 0.0, S[0], S[1], zero, zero.copy(),
                                  0.0, 0.0, 0, True, 0, np.zeros((2,) + shape), None, (0, nx - 1, 0, ny - 1), P)
     i0, i1, j0, j1 = win
     op = tangential_operator((i1 - i0 + 1, j1 - j0 + 1), dx, dy, E, nu)
     h = warm.history if P_old is not None else None
     predict = transient_prev and h is not None and h.order > 0 and h.window == win and _inside(win, warm.window)
     if steady:
-        P, S, st, U, ahead, f1, f2, newton, krylov, converged = _steady(p3, ix, iy, win, kin, mu, op, P_old, warm,
+        P, S, st, sl, U, ahead, f1, f2, newton, krylov, converged = _steady(p3, ix, iy, win, kin, mu, op, P_old, warm,
                                                                         tol)
     else:                                      # compiled whole (tang_pcg)
         U_old = _stacked(warm.U, warm.u1, warm.u2) if transient_prev else _EMPTY
@@ -98,7 +97,7 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
             hist_d, hist_n = _NEW_HISTORY, 0
         else:
             hist_d, hist_n = _NO_HISTORY, 0
-        P, S, st, U, ahead, f1, f2, newton, krylov, converged, d, n, order, pred = transient_step(
+        P, S, st, sl, U, ahead, f1, f2, newton, krylov, converged, d, n, order, pred = transient_step(
             p3, ix, iy, win, kin, mu, ahead, _EMPTY if P_old is None else P_old,
             _NO_SET if P_old is None else warm.stick, _NO_SET if P_old is None else warm.slip,
             h.pred if predict else _NO_PREDICTION, U_old, hist_d, hist_n, tol, _MAX_ITER, op.buffers.arrays, op.hat,
@@ -113,7 +112,7 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
         ahead = np.ascontiguousarray(u[:, 1:])
     history = History(d, n, order, win, pred) if transient_prev else None
     dA = dx * dy
-    return TangentialContact(P[0], P[1], st, contact & ~st, S[0], S[1], U[0], U[1], f1 * dA, f2 * dA, newton,
+    return TangentialContact(P[0], P[1], st, sl, S[0], S[1], U[0], U[1], f1 * dA, f2 * dA, newton,
                              converged, krylov, ahead, history, valid, P, U)
 
 
@@ -130,8 +129,6 @@ def _steady(p3, ix, iy, win, kin, mu, op, P_old, warm, tol):
     if P_old is not None:                      # warm start; entering elements start sliding
         start_values(ix, iy, r, g, P_old, warm.stick, warm.slip, _EMPTY, p0, stick0)
     res = solve_coulomb(op, ix - i0, iy - j0, r, g, p0, stick0, steady=True, tol=tol, warm=warm is not None)
-    P, S = np.zeros((2, nx, ny)), np.zeros((2, nx, ny))
-    st = np.zeros((nx, ny), bool)
-    f1, f2 = on_grid(ix, iy, res.p, res.s, res.stick, kin[3], P, S, st)
+    P, S, st, sl, f1, f2 = on_grid(ix, iy, res.p, res.s, res.stick, kin[3], (nx, ny))
     U, ahead = window_fields(res.u, win, (nx, ny))
-    return P, S, st, U, ahead, f1, f2, res.newton, res.krylov, res.converged
+    return P, S, st, sl, U, ahead, f1, f2, res.newton, res.krylov, res.converged

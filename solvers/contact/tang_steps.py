@@ -52,18 +52,21 @@ def start_values(ix, iy, r, g, P, stick, slip, pred, p0, stick0):
 
 
 @numba.njit(cache=True)
-def on_grid(ix, iy, p, s, stick, dt, P, S, st):
+def on_grid(ix, iy, p, s, stick, dt, shape):
     """The solution on the grid (zero outside the contact): tractions P, slip velocities S = s /
-    dt (2, nx, ny), stick set st.  Returns the force sums (sum p1, sum p2) [Pa]."""
+    dt (2, nx, ny), stick and slip sets.  Returns (P, S, stick, slip, sum p1, sum p2 [Pa])."""
+    P, S = np.zeros((2,) + shape), np.zeros((2,) + shape)
+    st, sl = np.zeros(shape, np.bool_), np.zeros(shape, np.bool_)
     f1 = f2 = 0.0
     for k in range(ix.shape[0]):
         i, j = ix[k], iy[k]
         P[0, i, j], P[1, i, j] = p[k, 0], p[k, 1]
         S[0, i, j], S[1, i, j] = s[k, 0] / dt, s[k, 1] / dt
         st[i, j] = stick[k]
+        sl[i, j] = not stick[k]
         f1 += p[k, 0]
         f2 += p[k, 1]
-    return f1, f2
+    return P, S, st, sl, f1, f2
 
 
 @numba.njit(cache=True)

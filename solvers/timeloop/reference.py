@@ -3,6 +3,7 @@
 Kalker's transient TANG, built from the same njit blocks."""
 from __future__ import annotations
 
+import numba
 import numpy as np
 
 from ..contact.compliance import contact_compliance, table_compliance
@@ -27,6 +28,23 @@ def _check(c: ContactModel, p: LoopParams, tangential: str, normal: str, complia
             raise ValueError("Kalker's TANG and the exact compliance need the table's pressure fields")
         return NormTable(c.xi3_nodes, c.F3_nodes, c.q_nodes, c.pressure_nodes, c.pressure_nodes > 0)
     return None
+
+
+@numba.njit(cache=True)
+def _slip_summary(p3, s1, s2, stick):
+    """Kalker's solution as a row of the record: the mean slip velocities over the contact (p3 >
+    0; s1, s2 are zero outside it) and the state, 1 with stick elements, 2 in full slip."""
+    n = 0
+    m1 = m2 = 0.0
+    any_stick = False
+    for i in range(p3.shape[0]):
+        for j in range(p3.shape[1]):
+            if p3[i, j] > 0.0:
+                n += 1
+                m1 += s1[i, j]
+                m2 += s2[i, j]
+                any_stick |= stick[i, j]
+    return m1 / n, m2 / n, 1.0 if any_stick else 2.0
 
 
 def run_reference(filt, rc, p: LoopParams, c: ContactModel, rec: Record, win: Windows, *, tangential: str,
@@ -89,12 +107,9 @@ def run_reference(filt, rc, p: LoopParams, c: ContactModel, rec: Record, win: Wi
                 tang_state = tang_transient(p3, c.dx, c.dy, v, c.mu, gamma_x=gxn, gamma_y=gyn + dxi2 / v,
                                             E=E, nu=nu, state=tang_state, full_output=False, tol=KALKER_TOL)
                 F1, F2 = tang_state.F1, tang_state.F2
-                n_in = np.count_nonzero(p3 > 0.0)  # mean slip over the contact (zero outside it)
-                s1 = float(tang_state.s1.sum()) / n_in
-                s2 = float(tang_state.s2.sum()) / n_in
+                s1, s2, state = _slip_summary(p3, tang_state.s1, tang_state.s2, tang_state.stick)
                 counters[0] += tang_state.iterations
                 counters[1] = max(counters[1], tang_state.iterations)
-                state = 1.0 if tang_state.stick.any() else 2.0
             F_prev = (F1, F2)
         else:
             F1 = F2 = F3 = 0.0
