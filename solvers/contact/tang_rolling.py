@@ -11,7 +11,8 @@ from .tang_newton import solve_coulomb
 from .tang_operator import tangential_operator
 from .tang_pcg import transient_step
 from .tang_state import ORDER, History, Rolling, TangentialContact, TangOptions
-from .tang_steps import contact_elements, on_grid, rigid_and_transport, start_values, window_fields
+from .tang_steps import (NO_WINDOW, contact_elements, inside, on_grid, rigid_and_transport, start_values,
+                         window_fields, working_window)
 
 
 _EMPTY = np.zeros((2, 0, 0))   # "no array" for the numba kernels
@@ -21,19 +22,6 @@ _NEW_HISTORY = np.zeros((2, ORDER, 2, 1, 1))     # predictor differences: none v
 _NO_HISTORY = np.zeros((2, ORDER, 2, 0, 0))      # ... not kept (steady, or no previous step)
 _MAX_ITER = 200
 PAD = 1                     # elements around the contact's bounding box when it outgrew the window
-
-
-def _grow(box, shape, pad):
-    """Bounding box (i0, i1, j0, j1) grown by `pad`, clipped to the grid; None without contact."""
-    if box[0] < 0:
-        return None
-    nx, ny = shape
-    return (max(box[0] - pad, 0), min(box[1] + pad, nx - 1), max(box[2] - pad, 0), min(box[3] + pad, ny - 1))
-
-
-def _inside(w, v):
-    """Window w inside window v."""
-    return v is not None and w[0] >= v[0] and w[1] <= v[1] and w[2] >= v[2] and w[3] <= v[3]
 
 
 def _stacked(both, a, b):
@@ -54,24 +42,16 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
     dt = dx / v
     ix, iy, box = contact_elements(p3)
     N = ix.size
-    win = _grow(box, shape, 0)
-    if win is not None and warm is not None and warm.p1.shape == shape and warm.history is not None:
-        # keep the previous step's window while the contact fits in it (a stable window keeps the
-        # predictor's history and the operator); a contact that outgrew it gets PAD elements
-        # around it (time loops with a breathing contact area)
+    old = NO_WINDOW
+    if warm is not None and warm.p1.shape == shape and warm.history is not None:
         old = warm.history.window
-        padded = _grow(box, shape, PAD)
-        if _inside(win, old) and (old[1] - old[0] + 1) * (old[3] - old[2] + 1) <= \
-                2 * (padded[1] - padded[0] + 1) * (padded[3] - padded[2] + 1):
-            win = old
-        else:
-            win = padded
+    win = working_window(box, shape, old, PAD)
     transient_prev = (not steady) and warm is not None and warm.p1.shape == shape
     P_old = _stacked(warm.P, warm.p1, warm.p2) if warm is not None and warm.p1.shape == shape else None
     ahead = _EMPTY
-    if transient_prev:                         # transport term: -u(x + dx, t - dt)
+    if transient_prev and N > 0:               # transport term: -u(x + dx, t - dt)
         ahead = warm.u_ahead
-        if ahead is None or not _inside(win, warm.window):
+        if ahead is None or not inside(win, warm.window):
             ahead = tangential_operator(shape, dx, dy, E, nu).displacements(P_old)[:, 1:]
     kin = (dx, dy, v, dt, gamma_x, gamma_y, spin, w_offset)
     if N == 0 or mu <= 0.0:                    # no contact or no friction: traction-free, all slip
@@ -85,7 +65,7 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
     i0, i1, j0, j1 = win
     op = tangential_operator((i1 - i0 + 1, j1 - j0 + 1), dx, dy, E, nu)
     h = warm.history if P_old is not None else None
-    predict = transient_prev and h is not None and h.order > 0 and h.window == win and _inside(win, warm.window)
+    predict = transient_prev and h is not None and h.order > 0 and h.window == win and inside(win, warm.window)
     if steady:
         P, S, st, sl, U, ahead, f1, f2, newton, krylov, converged = _steady(p3, ix, iy, win, kin, mu, op, P_old, warm,
                                                                         tol)

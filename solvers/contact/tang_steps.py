@@ -166,3 +166,29 @@ def window_fields(u, window, shape):
                 U[a, i, j] = u[a, i - i0, j - j0]
                 ahead[a, i, j] = u[a, i - i0 + 1, j - j0]
     return U, ahead
+
+
+NO_WINDOW = (-1, -1, -1, -1)    # "no previous window" for working_window
+
+
+@numba.njit(cache=True)
+def inside(w, v):
+    """Window w (i0, i1, j0, j1) inside window v."""
+    return w[0] >= v[0] and w[1] <= v[1] and w[2] >= v[2] and w[3] <= v[3]
+
+
+@numba.njit(cache=True)
+def working_window(box, shape, old, pad):
+    """The window of a step's solve for the contact's bounding box (i0, i1, j0, j1; i0 >= 0): the
+    previous step's window `old` while the contact fits in it and it is at most twice the box
+    grown by `pad` elements (a stable window keeps the predictor's history and the operator);
+    otherwise the box grown by `pad`, clipped to the grid (a breathing contact outgrew it); the
+    box itself without a previous window (old = NO_WINDOW)."""
+    nx, ny = shape
+    if old[0] < 0:
+        return box
+    padded = (max(box[0] - pad, 0), min(box[1] + pad, nx - 1), max(box[2] - pad, 0), min(box[3] + pad, ny - 1))
+    if inside(box, old) and (old[1] - old[0] + 1) * (old[3] - old[2] + 1) <= \
+            2 * (padded[1] - padded[0] + 1) * (padded[3] - padded[2] + 1):
+        return old
+    return padded

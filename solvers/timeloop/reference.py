@@ -3,13 +3,17 @@
 Kalker's transient TANG, built from the same njit blocks."""
 from __future__ import annotations
 
-import numba
+import warnings
+
 import numpy as np
 
 from ..contact.compliance import contact_compliance, table_compliance
 from ..contact.friction import mu_rf
 from ..contact.norm import NormTable, norm, table_force, table_pressure
 from ..contact.tang import tang_steady, tang_transient
+from ..contact.tang_operator import tangential_operator
+from ..contact.tang_state import History, TangentialContact
+from .kalker import kalker_steps, slip_summary
 from .inputs import FULL_SLIP, KALKER_TOL, ContactModel, LoopParams
 from .kernel import advance, point_contact
 from .result import Record, store
@@ -28,23 +32,6 @@ def _check(c: ContactModel, p: LoopParams, tangential: str, normal: str, complia
             raise ValueError("Kalker's TANG and the exact compliance need the table's pressure fields")
         return NormTable(c.xi3_nodes, c.F3_nodes, c.q_nodes, c.pressure_nodes, c.pressure_nodes > 0)
     return None
-
-
-@numba.njit(cache=True)
-def _slip_summary(p3, s1, s2, stick):
-    """Kalker's solution as a row of the record: the mean slip velocities over the contact (p3 >
-    0; s1, s2 are zero outside it) and the state, 1 with stick elements, 2 in full slip."""
-    n = 0
-    m1 = m2 = 0.0
-    any_stick = False
-    for i in range(p3.shape[0]):
-        for j in range(p3.shape[1]):
-            if p3[i, j] > 0.0:
-                n += 1
-                m1 += s1[i, j]
-                m2 += s2[i, j]
-                any_stick |= stick[i, j]
-    return m1 / n, m2 / n, 1.0 if any_stick else 2.0
 
 
 def run_reference(filt, rc, p: LoopParams, c: ContactModel, rec: Record, win: Windows, *, tangential: str,
@@ -72,7 +59,22 @@ def run_reference(filt, rc, p: LoopParams, c: ContactModel, rec: Record, win: Wi
     nsol = None
     row = np.zeros(8)
     iw = jw = reason = done = 0
-    for n in range(n_steps):
+    compiled = tangential == "kalker" and normal == "table"
+    n = 0
+    while n < n_steps:
+        if compiled and tang_state is not None and tang_state.history is not None \
+                and tang_state.window == tang_state.history.window:       # steps in numba while they can
+            n_new, loop, reason, tang, last, bad = kalker_steps(
+                n, filt, rc, p, rec, win, (xi2, xi3, xi2_old, jw, iw), table[:4], (c.dx, c.dy, c.mu, KALKER_TOL),
+                _fields(tang_state), _operator(tang_state, c), row)
+            if bad:
+                warnings.warn(f"TANG: stick/slip sets not converged in {bad} steps", RuntimeWarning)
+            if n_new > n:
+                xi2, xi3, xi2_old, jw, iw = loop
+                tang_state = _solution(tang, last)
+                n = done = n_new
+                if reason != 0 or n == n_steps:
+                    break
         gxn = gx[min(n, len(gx) - 1)]
         gyn = gy[min(n, len(gy) - 1)]
         app = xi3_static - xi3
@@ -107,7 +109,7 @@ def run_reference(filt, rc, p: LoopParams, c: ContactModel, rec: Record, win: Wi
                 tang_state = tang_transient(p3, c.dx, c.dy, v, c.mu, gamma_x=gxn, gamma_y=gyn + dxi2 / v,
                                             E=E, nu=nu, state=tang_state, full_output=False, tol=KALKER_TOL)
                 F1, F2 = tang_state.F1, tang_state.F2
-                s1, s2, state = _slip_summary(p3, tang_state.s1, tang_state.s2, tang_state.stick)
+                s1, s2, state = slip_summary(p3, tang_state.s1, tang_state.s2, tang_state.stick)
                 counters[0] += tang_state.iterations
                 counters[1] = max(counters[1], tang_state.iterations)
             F_prev = (F1, F2)
@@ -122,7 +124,28 @@ def run_reference(filt, rc, p: LoopParams, c: ContactModel, rec: Record, win: Wi
         store(n, row, rec)
         xi2_old = xi2
         xi2, xi3, jw, iw, reason = advance(filt, rc, n, float(F2), float(F3), p, win, jw, iw)
-        done = n + 1
+        n = done = n + 1
         if reason != 0:
             break
     return done, reason, F_ref
+
+
+def _fields(t: TangentialContact):
+    """A transient solution as ``kalker_steps`` takes it."""
+    h = t.history
+    return (t.P, np.stack([t.s1, t.s2]), t.stick, t.slip, t.U, t.u_ahead, h.window, h.d, h.n, h.order, h.pred)
+
+
+def _solution(f, last) -> TangentialContact:
+    """``kalker_steps``' last solution as a TangentialContact."""
+    P, S, st, sl, U, ahead, window, d, n, order, pred = f
+    F1, F2, newton, krylov, converged = last
+    return TangentialContact(P[0], P[1], st, sl, S[0], S[1], U[0], U[1], F1, F2, newton, converged, krylov, ahead,
+                             History(d, n, order, window, pred), window, P, U)
+
+
+def _operator(t: TangentialContact, c: ContactModel):
+    """The arrays of the operator of a transient solution's window."""
+    i0, i1, j0, j1 = t.history.window
+    op = tangential_operator((i1 - i0 + 1, j1 - j0 + 1), c.dx, c.dy, c.E, c.nu)
+    return op.buffers.arrays, op.hat, op.symbol, op.inv, op.a0, op.scale
