@@ -167,6 +167,22 @@ def test_kalker_transient_as_the_tangential_model(contact, squealer):
     assert np.abs(k.F[:, 2] - p.F[:, 2]).max() < 1e-3 * PRELOAD
 
 
+def test_kalker_compiled_steps_are_the_python_steps(contact, squealer, monkeypatch):
+    """The reference driver's compiled Kalker steps (timeloop/kalker.py) give the records of its
+    Python step bit for bit (the Python driver taking every step)."""
+    if contact.pressure_nodes is None:
+        pytest.skip("needs the built contact (pressure fields)")
+    from solvers.timeloop import reference
+    wheel, g = squealer[DT]
+    kw = dict(dt=DT, v=V, gamma_y=GAMMA_Y, duration=300 * DT, stop=None, kick=(0.07, 0.07), tangential="kalker")
+    k = simulate(wheel, g, contact, **kw)
+    monkeypatch.setattr(reference, "kalker_steps", lambda n, *args: (n, None, 0, None, None, 0))
+    py = simulate(wheel, g, contact, **kw)
+    for a, b in ((k.F, py.F), (k.slip, py.slip), (k.xi, py.xi), (k.state, py.state)):
+        assert np.array_equal(a, b)
+    assert k.newton == py.newton
+
+
 @pytest.mark.parametrize("sign, grows", [(1.0, False), (-1.0, True)])
 def test_slip_sign_energy_argument(sign, grows):
     """A lightly damped purely lateral wheel mode in micro-slip (gamma_y = -0.002, rising mu_RF):
