@@ -123,7 +123,9 @@ Drivers
   and head B (benchmarks/interaction.py);
 * normal='norm', compliance='exact' and/or tangential='kalker' (or
   driver='python'): the reference drivers, a Python loop over the steps with
-  the same kinematics and the same njit building blocks: per-step NORM
+  the same kinematics and the same njit building blocks (with the table's
+  pressures, Kalker's steps run compiled, ``timeloop.kalker``, while the
+  contact keeps its window): per-step NORM
   (warm-started active set, ``solvers.contact.norm``, ~0.7 ms per step; it
   agrees with the table to the table's interpolation error: exactly at the
   nodes, ~1e-5 over a run with the contact stage's 41 nodes, < 1e-6 with the
@@ -133,9 +135,8 @@ Drivers
   lateral velocity added to the rigid slip: gamma_y + sign (xi2[n] -
   xi2[n-1])/dx; FFT-based Newton-Krylov, warm-started and extrapolated from
   the last steps, tolerance KALKER_TOL, displacements on the contact's window
-  only, the Newton-CG solve compiled whole: about 0.5 ms per step on the
-  default contact in the first second, 0.7 ms in a squeal limit cycle,
-  docs/benchmarks.md).
+  only, the step compiled whole: about 0.35-0.5 ms per step on the default
+  contact, 8 s of rolling in 104-125 s, docs/benchmarks.md).
 
 Output: every ``store_every``-th step (decimated history) plus the last
 ``final`` seconds at full rate (for the spectra); early stop when a limit

@@ -8,7 +8,7 @@
 * stand-alone: rigid, fixed wheel and rail, prescribed creepage gamma_y(t) = gamma_0 +
   amplitude sin(2 pi f t) over frequency; F2's mean, amplitude and phase at f.
 
-Kalker's transient model costs ~0.5-0.7 ms (CPU) per time step, the point model ~5 us
+Kalker's transient model costs ~0.5 ms (CPU) per time step, the point model ~1.5 us
 (docs/benchmarks.md): every run may go to the SPEC's 8 s and stops at its limit cycle
 (pipeline/studies/contact.toml gives the numbers).  Kalker's runs are submitted first (the
 longest tasks first).

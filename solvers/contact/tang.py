@@ -63,9 +63,12 @@ previous solution's tractions and sets) cut the Newton steps to a few; in
 transient rolling the start is extrapolated from the last steps (a polynomial
 of order 0 to 3: whichever would have predicted the last step best) and its
 sets updated as after a Newton step, so a time step takes one Newton step, two
-or three where elements change set.  The transient solve runs whole in numba
-(tang_pcg, the FFTs through rocket-fft), and the per-step bookkeeping on the
-grid is compiled (tang_steps).  Timings and scaling: benchmarks/contact.py; agreement
+or three where elements change set.  A transient step runs whole in numba
+(tang_pcg.transient_step: the bookkeeping on the grid of tang_steps, the
+Newton-CG solve, the FFTs through rocket-fft); the displacements after a Newton
+step are the sum of its CG products (A lift(x) = sum alpha_k A d_k) when the
+step is linear to LINEAR tol (the traction circle's curvature below that), so
+such a step needs no product of its own.  Timings and scaling: benchmarks/contact.py; agreement
 with the former dense solver (tests/contact/tang_dense.py) and with CONTACT:
 docs/validation/30_contact.md.
 """

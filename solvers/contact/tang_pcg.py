@@ -1,8 +1,9 @@
-"""The transient Coulomb solve of TANG compiled whole (notes in ``solvers.contact.tang``): Kalker's
+"""The transient step of TANG compiled whole (notes in ``solvers.contact.tang``): Kalker's
 active-set Newton method with its preconditioned CG inner solver and the FFT products
-(``tang_operator.fft_convolve`` / ``fft_precondition``) in one numba function, so that a time
-step of a small contact is not spent in Python between the transforms.  Same Newton steps and
-stopping rules as the steady solve in ``tang_newton``."""
+(``tang_operator.fft_convolve`` / ``fft_precondition``) in one numba function, and the step
+around it (``transient_step``: the bookkeeping of ``tang_steps``), so that a time step of a
+small contact is not spent in Python between the transforms.  Same Newton steps and stopping
+rules as the steady solve in ``tang_newton``."""
 from __future__ import annotations
 
 import math
@@ -18,7 +19,8 @@ from .tang_steps import differences, on_grid, predicted_start, rigid_and_transpo
 
 CG_ABS = 0.1        # CG also stops when its error estimate is below CG_ABS tol x traction level
 RHO_MIN = 0.25      # ... the contraction per CG step assumed at least (the preconditioned CG's is ~1/4)
-LINEAR = 0.1
+LINEAR = 0.1        # a Newton step whose non-linear part is below LINEAR tol x traction level: its
+                    # displacements are the sum of its CG products (error well inside CG_ABS's budget)
 FEW = 2             # set changes after which the next Newton step may be final (steady solve too)
 
 
@@ -28,7 +30,9 @@ def _pcg(ix, iy, stick, t, sc, D, mdiag, scale, b, rtol, atol, kmax, bufs, hat, 
     """J x = b by preconditioned CG (transient: J symmetric positive definite), fused kernels.
     Stops at |r| <= rtol |b|, or when the error left, estimated from the last update max |alpha d|
     and its ratio rho to the one before (rho >= RHO_MIN) as |alpha d| rho / (1 - rho), is below
-    atol.  x is overwritten.  Returns (steps, error estimate: rtol max |x| or that estimate)."""
+    atol.  x is overwritten, and Ax with the displacements of lift(x) on the window and one row
+    ahead (the sum of the products).  Returns (steps, error estimate: rtol max |x| or that
+    estimate)."""
     nx = bufs[0].shape[1]
     conv_in = bufs[0][:, :, :ny]
     prec_in = bufs[5][:, :nx, :ny]
@@ -95,7 +99,7 @@ def _slip_of(ix, iy, p, r, s, bufs, hat, ny):
 def coulomb_transient(ix, iy, r, g, p, stick, u_start, warm, tol, max_iter, bufs, hat, ny, symbol, inv, a0,
                       scale):
     """``tang_newton.solve_coulomb`` for transient rolling (M = A), compiled: p (N, 2), stick (N,)
-    are the start and are overwritten by the solution; u_start (2, nx + 1, ny) the predicted
+    are the start and are overwritten by the solution; u_start (2, nx, ny) the predicted
     displacements of the start, or an array without rows.  Returns (slip s (N, 2), displacements
     u (2, nx + 1, ny) of the solution, Newton steps, CG steps, converged)."""
     N = ix.shape[0]

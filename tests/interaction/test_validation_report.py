@@ -470,7 +470,7 @@ def kalker_section() -> str:
 against TANG per step (pressures from the NORM table, the structural lateral velocity added to the rigid slip,
 gamma_y,eff = gamma_y + (xi2[n] - xi2[n-1])/dx, the previous step's tractions as the transient state):
 max |dF2| = {d2:.1f} N ({100 * d2 / p.F_ref[1]:.2f} % of the steady F2), max |dF3| = {d3:.1f} N; TANG stays in full
-slip ({100 * np.mean(k.state == 2):.0f} % of the steps). Cost **{1e3 * per:.2f} ms per step** in the Python loop after
+slip ({100 * np.mean(k.state == 2):.0f} % of the steps). Cost **{1e3 * per:.2f} ms per step** in the reference loop after
 compilation (~{per * 222222 / 60:.0f} min for 8 s of rolling at this cost; a squeal limit cycle, whose stick and slip
 areas change every step, costs more: docs/benchmarks.md, "Interaction"); the contact-model validation of SPEC 7
 (`make study STUDY=contact`) runs every mode with both models to its limit cycle or decay.
