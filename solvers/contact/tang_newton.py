@@ -12,10 +12,8 @@ import numpy as np
 from .tang_kernels import (after_step, forcing_term, gather_slip, jacobian_rows, lift, newton_system, precondition_in,
                            precondition_out, scatter, start_on_bounds, step_and_scatter)
 from .tang_operator import TangentialOperator
-from .tang_pcg import FEW, coulomb_transient
+from .tang_pcg import FEW
 from .tang_state import QUADRATIC, TOL
-
-_NO_START = np.zeros((2, 0, 0))   # "no predicted displacements" for the compiled transient solve
 
 
 # ----------------------------------------------------------------------------------------------
@@ -110,17 +108,15 @@ class CoulombResult(NamedTuple):
     converged: bool
 
 
-def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: bool, tol=TOL,
-                  max_iter=200, warm=False, u_start=None) -> CoulombResult:
-    """Kalker's active-set Newton solver for s = r + M p on the contact elements (ix, iy) of the
-    operator's grid (r, p: (N, 2) [m per step, Pa]; g = mu p3 (N,)), per element: stick s = 0,
-    |p| <= g, or slip |p| = g, p = -g s/|s|.  M = A (transient) or A - A(x + dx) (steady).
-    `p`, `stick`: start values (a previous solution, or zeros and all-stick).  Stops when no
-    element changes set and the Newton step is below tol times the traction level
-    (max(|p|)).  `warm`: the start is a previous solution (its sets are trusted for the first
-    step); `u_start` (2, nx, ny): transient only, the displacements of the start tractions if
-    known (a prediction: they start the first Newton step without a product).  Returns a
-    CoulombResult."""
+def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, tol=TOL, max_iter=200,
+                  warm=False) -> CoulombResult:
+    """Kalker's active-set Newton solver for steady rolling, s = r + M p with M = A - A(x + dx),
+    on the contact elements (ix, iy) of the operator's grid (r, p: (N, 2) [m per step, Pa]; g =
+    mu p3 (N,)), per element: stick s = 0, |p| <= g, or slip |p| = g, p = -g s/|s|.  `p`,
+    `stick`: start values (a previous solution, or zeros and all-stick).  Stops when no element
+    changes set and the Newton step is below tol times the traction level (max(|p|)).  `warm`:
+    the start is a previous solution (its sets are trusted for the first step).  Returns a
+    CoulombResult.  (Transient rolling, M = A: ``tang_pcg.coulomb_transient``.)"""
     ix = np.ascontiguousarray(ix, dtype=np.int64)
     iy = np.ascontiguousarray(iy, dtype=np.int64)
     N = ix.shape[0]
@@ -129,12 +125,6 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, steady: boo
     p = np.array(p, dtype=float).reshape(N, 2)
     stick = np.array(stick, dtype=bool)
     bufs = op.buffers
-    if not steady:              # compiled whole (tang_pcg)
-        start = _NO_START if u_start is None else np.ascontiguousarray(u_start, dtype=float)
-        s, u, newton, krylov, converged = coulomb_transient(ix, iy, r, g, p, stick, start, bool(warm), float(tol),
-                                                            int(max_iter), bufs.arrays, op.hat, op.shape[1],
-                                                            op.symbol, op.inv, op.a0, op.scale)
-        return CoulombResult(p, s, stick, u, newton, krylov, converged)
     grid = bufs.conv_in                       # the FFT input arrays, filled in place
     convolve, precondition = bufs.convolve, bufs.precondition
     scale = op.scale

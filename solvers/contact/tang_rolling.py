@@ -20,7 +20,7 @@ _NO_SET = np.zeros((0, 0), bool)
 _NO_PREDICTION = np.zeros((2, 2, 0, 0))
 _NEW_HISTORY = np.zeros((2, ORDER, 2, 1, 1))     # predictor differences: none valid yet
 _NO_HISTORY = np.zeros((2, ORDER, 2, 0, 0))      # ... not kept (steady, or no previous step)
-_MAX_ITER = 200
+MAX_ITER = 200              # Newton steps at most (transient)
 PAD = 1                     # elements around the contact's bounding box when it outgrew the window
 
 
@@ -80,7 +80,7 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
         P, S, st, sl, U, ahead, f1, f2, newton, krylov, converged, d, n, order, pred = transient_step(
             p3, ix, iy, win, kin, mu, ahead, _EMPTY if P_old is None else P_old,
             _NO_SET if P_old is None else warm.stick, _NO_SET if P_old is None else warm.slip,
-            h.pred if predict else _NO_PREDICTION, U_old, hist_d, hist_n, tol, _MAX_ITER, op.buffers.arrays, op.hat,
+            h.pred if predict else _NO_PREDICTION, U_old, hist_d, hist_n, tol, MAX_ITER, op.buffers.arrays, op.hat,
             op.symbol, op.inv, op.a0, op.scale)
     if not converged:
         warnings.warn("TANG: stick/slip sets not converged", RuntimeWarning)
@@ -108,7 +108,7 @@ def _steady(p3, ix, iy, win, kin, mu, op, P_old, warm, tol):
     p0, stick0 = np.zeros((N, 2)), np.ones(N, bool)
     if P_old is not None:                      # warm start; entering elements start sliding
         start_values(ix, iy, r, g, P_old, warm.stick, warm.slip, _EMPTY, p0, stick0)
-    res = solve_coulomb(op, ix - i0, iy - j0, r, g, p0, stick0, steady=True, tol=tol, warm=warm is not None)
+    res = solve_coulomb(op, ix - i0, iy - j0, r, g, p0, stick0, tol=tol, warm=warm is not None)
     P, S, st, sl, f1, f2 = on_grid(ix, iy, res.p, res.s, res.stick, kin[3], (nx, ny))
     U, ahead = window_fields(res.u, win, (nx, ny))
     return P, S, st, sl, U, ahead, f1, f2, res.newton, res.krylov, res.converged

@@ -12,7 +12,7 @@ from ..contact.norm import _table_pressure, table_force
 from ..contact.tang_pcg import transient_step
 from ..contact.tang_state import W_OFFSET
 from ..contact.tang_steps import contact_elements, working_window
-from ..contact.tang_rolling import PAD
+from ..contact.tang_rolling import MAX_ITER, PAD
 from .kernel import advance
 from .result import store
 
@@ -68,7 +68,7 @@ def kalker_steps(n, filt, rc, p, rec, win, loop, table, contact, tang, op, row):
         kin = (dx, dy, v, dx / v, gxn, gyn + dxi2 / v, 0.0, W_OFFSET)   # as tang_transient
         P, S, st, sl, U, ahead, f1, f2, newton, krylov, converged, d, hn, order, pred = transient_step(
             p3, ix, iy, window, kin, mu, ahead, P, st, sl, pred if order > 0 else no_prediction, U, d, hn, tol,
-            200, bufs, hat, symbol, inv, a0, scale)
+            MAX_ITER, bufs, hat, symbol, inv, a0, scale)
         bad += not converged
         F1, F2 = f1 * (dx * dy), f2 * (dx * dy)
         last = (F1, F2, newton, krylov, converged)
