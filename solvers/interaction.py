@@ -136,7 +136,7 @@ Drivers
   xi2[n-1])/dx; FFT-based Newton-Krylov, warm-started and extrapolated from
   the last steps, tolerance KALKER_TOL, displacements on the contact's window
   only, the step compiled whole: about 0.35-0.5 ms per step on the default
-  contact, 8 s of rolling in 104-125 s, docs/benchmarks.md).
+  contact, 8 s of rolling in 96-125 s, docs/benchmarks.md).
 
 Output: every ``store_every``-th step (decimated history) plus the last
 ``final`` seconds at full rate (for the spectra); early stop when a limit
