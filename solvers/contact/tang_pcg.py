@@ -182,7 +182,7 @@ def transient_step(p3, ix, iy, win, kin, mu, ahead, P_old, stick_old, slip_old, 
     with the operator's arrays, the solution on the grid and the predictor's differences after
     the step (hist_d with rows: the previous step's, hist_n valid; ``tang_steps.differences``).
     kin = (dx, dy, v, dt, gamma_x, gamma_y, spin, w_offset).  Returns (P, S (2, nx, ny), stick,
-    U, ahead, f1, f2, Newton steps, CG steps, converged, d, n, order, prediction)."""
+    slip, U, ahead, f1, f2, Newton steps, CG steps, converged, d, n, order, prediction)."""
     nx, ny = p3.shape
     i0, i1, j0, j1 = win
     N = ix.shape[0]

@@ -10,9 +10,9 @@ import numba
 
 from ..contact.norm import _table_pressure, table_force
 from ..contact.tang_pcg import transient_step
+from ..contact.tang_rolling import MAX_ITER, PAD
 from ..contact.tang_state import W_OFFSET
 from ..contact.tang_steps import contact_elements, working_window
-from ..contact.tang_rolling import MAX_ITER, PAD
 from .kernel import advance
 from .result import store
 
