@@ -116,7 +116,8 @@ def coulomb_transient(ix, iy, r, g, p, stick, u_start, warm, tol, max_iter, bufs
     eta_final = min(1e-3, 0.1 * tol / q_lim)      # ... if solved this accurately
     # start: slip elements on their circle, stick elements inside their bound; the predicted
     # displacements hold for the start only if it was kept
-    p_level, moved = start_on_bounds(stick, theta, g, s, p, t, D, scale, p.copy())
+    p_old = p.copy()                             # the start as given; then the tractions before each step
+    p_level, moved = start_on_bounds(stick, theta, g, s, p, t, D, scale, p_old)
     use_start = u_start.shape[1] > 0 and moved <= 1e-3 * q_lim * p_level
     u = u_start
     if use_start:
@@ -135,7 +136,6 @@ def coulomb_transient(ix, iy, r, g, p, stick, u_start, warm, tol, max_iter, bufs
     if exact:
         u_cur[:] = u
     Ax = np.empty_like(u_cur)
-    p_old = np.empty_like(p)
     newton = krylov = 0
     converged = False
     sets_changed = not warm

@@ -24,12 +24,6 @@ MAX_ITER = 200              # Newton steps at most (transient)
 PAD = 1                     # elements around the contact's bounding box when it outgrew the window
 
 
-def _stacked(both, a, b):
-    """A pair of a solution's fields as one (2, nx, ny) array: the stacked one it keeps (P, U), or
-    its two rows stacked (a solution made elsewhere)."""
-    return both if both is not None else np.stack([a, b])
-
-
 def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | None,
                   opts: TangOptions) -> TangentialContact:
     """Common driver of tang_steady / tang_transient: the problem of pressures p3 (nx, ny) [Pa]
@@ -47,7 +41,7 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
         old = warm.history.window
     win = working_window(box, shape, old, PAD)
     transient_prev = (not steady) and warm is not None and warm.p1.shape == shape
-    P_old = _stacked(warm.P, warm.p1, warm.p2) if warm is not None and warm.p1.shape == shape else None
+    P_old = warm.P if warm is not None and warm.p1.shape == shape else None
     ahead = _EMPTY
     if transient_prev and N > 0:               # transport term: -u(x + dx, t - dt)
         ahead = warm.u_ahead
@@ -57,11 +51,10 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
     if N == 0 or mu <= 0.0:                    # no contact or no friction: traction-free, all slip
         r = np.empty((N, 2))
         rigid_and_transport(ix, iy, shape, kin, ahead, r)
-        P, S = np.zeros((2,) + shape), np.zeros((2,) + shape)
+        P, S, U = np.zeros((2,) + shape), np.zeros((2,) + shape), np.zeros((2,) + shape)
         S[0][ix, iy], S[1][ix, iy] = r[:, 0] / dt, r[:, 1] / dt
-        zero = np.zeros(shape)
-        return TangentialContact(P[0], P[1], np.zeros(shape, bool), p3 > 0.0, S[0], S[1], zero, zero.copy(),
-                                 0.0, 0.0, 0, True, 0, np.zeros((2,) + shape), None, (0, nx - 1, 0, ny - 1), P)
+        return TangentialContact(P[0], P[1], np.zeros(shape, bool), p3 > 0.0, S[0], S[1], U[0], U[1],
+                                 0.0, 0.0, 0, True, 0, np.zeros((2,) + shape), None, (0, nx - 1, 0, ny - 1), P, U)
     i0, i1, j0, j1 = win
     op = tangential_operator((i1 - i0 + 1, j1 - j0 + 1), dx, dy, E, nu)
     h = warm.history if P_old is not None else None
@@ -70,7 +63,7 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
         P, S, st, sl, U, ahead, f1, f2, newton, krylov, converged = _steady(p3, ix, iy, win, kin, mu, op, P_old, warm,
                                                                         tol)
     else:                                      # compiled whole (tang_pcg)
-        U_old = _stacked(warm.U, warm.u1, warm.u2) if transient_prev else _EMPTY
+        U_old = warm.U if transient_prev else _EMPTY
         if transient_prev and h is not None and h.pred.shape[1:] == P_old.shape and h.window == win:
             hist_d, hist_n = h.d, h.n
         elif transient_prev:                   # a new history (first step, or a new window)

@@ -29,7 +29,7 @@ class TangentialContact(NamedTuple):
     history: "History | None" = None    # transient: the last steps' changes (the next step's predictor)
     window: tuple | None = None          # (i0, i1, j0, j1): rows/columns where u1, u2, u_ahead are valid
     P: np.ndarray | None = None          # (2, nx, ny): p1, p2 are its rows (the next step reads it whole)
-    U: np.ndarray | None = None          # (2, nx, ny): u1, u2 are its rows
+    U: np.ndarray | None = None          # (2, nx, ny): u1, u2 are its rows (every solution has P and U)
 
 
 class History(NamedTuple):
