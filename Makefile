@@ -9,9 +9,11 @@ CASE  ?= default
 BUILD ?= build
 PY    := .venv/bin/python
 STAMP := .venv/.setup-stamp
-# the computing stages' packages (requirements-core.txt), installed first: those stages start while
-# pip installs the rest (renders, report, studies, listening, tests) beside them
-CORE  ?= $(dir $(STAMP)).core-stamp
+# the venv in three steps, each installed when a goal first needs it: the computing stages' packages
+# (requirements-core.txt), the renders' (requirements-render.txt, beside the first stages), then the
+# rest (studies, listening, tests: requirements.txt, which includes both; `make` alone never waits for it)
+CORE   ?= $(dir $(STAMP)).core-stamp
+RENDER ?= $(dir $(STAMP)).render-stamp
 # pipeline/deps.py uses the standard library only: it runs before the venv exists
 DEPS_PY := $(firstword $(wildcard $(PY)) /usr/bin/python3)
 CFILE := pipeline/cases/$(CASE).toml
@@ -97,11 +99,17 @@ $(CORE): requirements-core.txt constraints.txt .apt-stamp
 	$(PY) -c "$(call MISSING,numba rocket_fft pydantic matplotlib tqdm); import numpy; assert numpy.__version__.startswith('1.24'), numpy.__version__"
 	@touch $@
 
-# the rest, beside the first stages: pip keeps the installed core packages (they satisfy the pins),
-# so nothing a running stage imports is replaced
-$(STAMP): requirements.txt $(CORE)
+# the renders' packages, beside the first stages: pip keeps the installed core packages (they satisfy
+# the pins), so nothing a running stage imports is replaced
+$(RENDER): requirements-render.txt $(CORE)
+	$(PIP) -r requirements-render.txt
+	$(PY) -c "import pyvista"
+	@touch $@
+
+# the rest (studies, listening, tests), for the goals that need it
+$(STAMP): requirements.txt $(RENDER)
 	$(PIP) -r requirements.txt
-	$(PY) -c "$(call MISSING,dolfinx slepc4py gmsh dask distributed pyfar); import pyvista"
+	$(PY) -c "$(call MISSING,dolfinx slepc4py gmsh dask distributed pyfar pytest)"
 	@touch $@
 
 setup: $(STAMP) ## install Debian packages and the Python venv (stamp files; reruns only when the lists change)
@@ -117,7 +125,7 @@ $(W)/modes.npz: $(W)/mesh.json $(WFILE) $(DEPS_modes) | $(CORE)
 	$(PY) -m pipeline modes --wheel $(WHEEL)
 
 # one llvmpipe (Mesa) render thread: the same pixels, ~7 % less CPU (it runs beside other stages)
-$(W)/shapes/gallery.png: $(W)/modes.npz $(WFILE) $(DEPS_shapes) | $(STAMP)
+$(W)/shapes/gallery.png: $(W)/modes.npz $(WFILE) $(DEPS_shapes) | $(RENDER)
 	LP_NUM_THREADS=1 $(PY) -m pipeline shapes --wheel $(WHEEL)
 
 # --- rail and contact stages (the greens stage needs the rail's section mesh, not rail.npz: it meshes
@@ -159,9 +167,9 @@ FORCE:
 # the listening section is in the report when `make listen` has run (as the studies)
 # parallel Make starts the jobs in the order of these lists (depth first, the rules read in this
 # order; the recipe's rule has none of its own, else its prerequisites would come first; the
-# order-only ones are here for that order only): the wheel mesh, the rest of pip, the rail, the wheel
+# order-only ones are here for that order only): the wheel mesh, the renders' pip step, the rail, the wheel
 # modes, the greens stage, the numba warm-up, the renders, the contact, simulate -> radiate
-$(BUILD)/report/$(CASE)/report.md: | $(W)/mesh.json $(STAMP)
+$(BUILD)/report/$(CASE)/report.md: | $(W)/mesh.json $(RENDER)
 $(BUILD)/report/$(CASE)/report.md: $(CFILE) $(R)/rail.npz $(W)/modes.npz $(C)/greens.npz | $(JIT)
 $(BUILD)/report/$(CASE)/report.md: $(W)/shapes/gallery.png $(C)/contact.npz $(C)/simulate.npz $(C)/radiate.npz $(WFILE) $(RFILE) $(DEPS_report) $(wildcard $(BUILD)/studies/*/summary.md) $(wildcard $(C)/listen.npz)
 $(BUILD)/report/$(CASE)/report.md:

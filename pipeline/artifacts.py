@@ -165,7 +165,7 @@ def save_npz(path: str | os.PathLike, kind: str, config: Mapping, /, **arrays: A
     with atomic_write(path) as tmp:
         # Written with zipfile + np.lib.format directly (what np.savez does
         # internally) so array names cannot collide with savez's arguments.
-        with zipfile.ZipFile(tmp, mode="w", compression=zipfile.ZIP_DEFLATED) as archive:
+        with zipfile.ZipFile(tmp, mode="w", compression=zipfile.ZIP_DEFLATED, compresslevel=1) as archive:
             for name, array in converted.items():
                 with archive.open(name + ".npy", mode="w", force_zip64=True) as member:
                     np.lib.format.write_array(member, array, allow_pickle=False)

@@ -100,6 +100,46 @@ def precondition_out(ix, iy, stick, t, sc, D, mdiag, z, slip_fft, x, y):
 
 
 @numba.njit(cache=True)
+def _kth(v, k):
+    """The k-th smallest value of v (0-based; Hoare's quickselect, v reordered in place).  np.median's
+    numba implementation takes ~1.6 s to compile in every fresh build; this, a tenth of it."""
+    lo, hi = 0, v.shape[0] - 1
+    while lo < hi:
+        pivot = v[(lo + hi) // 2]
+        i, j = lo, hi
+        while i <= j:
+            while v[i] < pivot:
+                i += 1
+            while v[j] > pivot:
+                j -= 1
+            if i <= j:
+                v[i], v[j] = v[j], v[i]
+                i += 1
+                j -= 1
+        if k <= j:
+            hi = j
+        elif k >= i:
+            lo = i
+        else:
+            break
+    return v[k]
+
+
+@numba.njit(cache=True)
+def _median(v):
+    """np.median(v) (the same arithmetic: the middle value, or the mean of the two), v reordered."""
+    n = v.shape[0]
+    half = n // 2
+    if n % 2 == 1:
+        return _kth(v, half)
+    a = _kth(v, half - 1)
+    b = v[half]
+    for k in range(half + 1, n):                   # after the select, v[half:] >= a: its least
+        b = min(b, v[k])
+    return (a + b) / 2
+
+
+@numba.njit(cache=True)
 def slip_scaling(stick, t, D, mdiag, sc):
     """Median of D over the slip elements and the symmetric scaling sqrt((m + dbar) / (m + D))."""
     n = 0
@@ -114,7 +154,7 @@ def slip_scaling(stick, t, D, mdiag, sc):
         if not stick[k]:
             vals[n] = D[k]
             n += 1
-    dbar = np.median(vals)
+    dbar = _median(vals)
     for k in range(stick.shape[0]):
         if not stick[k]:
             m = t[k, 0] * t[k, 0] * mdiag[0] + t[k, 1] * t[k, 1] * mdiag[1]

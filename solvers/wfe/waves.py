@@ -122,7 +122,9 @@ def dispersion(fam: Family, ks, fmax: float, rail: dict, zc: float, snapshots: d
             sel = f <= fmax
             f, phi = f[sel], phi[:, sel]
         else:
-            f, phi = eig_real_k(fam, k, fmax)
+            # as many eigenpairs as the last k had waves, and one more (SLEPc's cost grows with
+            # the number asked for; eig_real_k asks again for more if they do not reach fmax)
+            f, phi = eig_real_k(fam, k, fmax, nev_min=4 if prev is None else max(4, len(prev[0]) + 1))
         labels, _ = classify(fam, phi, rail, zc, k) if len(f) else ([], None)
         ids = [-1] * len(f)
         if prev is not None and len(f) and len(prev[0]):

@@ -237,3 +237,16 @@ def test_spin_matches_contact_fastsim_case():
     assert fy == pytest.approx(-0.6074, rel=5e-3)
     assert mz == pytest.approx(-4.821e4, rel=5e-3)
     assert abs(int(sol.stick.sum()) - 356) <= 4 and abs(sol.F1) < 1e-6 * ns.F3
+
+
+def test_slip_median_is_numpys():
+    # the preconditioner's median of D over the slip elements (tang_kernels._median, a quickselect):
+    # numpy's median exactly, for odd and even counts, ties and sorted input
+    from solvers.contact.tang_kernels import _median
+
+    rng = np.random.default_rng(7)
+    for n in [*range(1, 30), 100, 101, 1000]:
+        for rep in range(12):
+            v = rng.standard_normal(n)
+            v = np.round(v, 1) if rep % 3 == 0 else (np.sort(v) if rep % 3 == 1 else v)
+            assert _median(v.copy()) == np.median(v)
