@@ -87,28 +87,34 @@ help: ## list the targets
 	fi
 	@touch $@
 
-# the venv uses Debian's pip (python3-pip, seen through --system-site-packages: no ensurepip copy) and
-# installs without byte-compiling every file (Python compiles what is imported, when it is: ~half the time)
+# the venv uses Debian's pip (python3-pip, seen through --system-site-packages: no ensurepip copy) to install
+# uv, and uv the requirements (4-5x faster than pip here: ~2 s for the core's 20 packages, where pip takes
+# 9-13 s on the setup's critical path).  Every package is pinned (constraints.txt), so both install the same
+# versions; numpy and scipy stay Debian's (debian-provided.txt).  pip is the fallback when uv is not there
+# or fails.  Neither byte-compiles every file (Python compiles what is imported, when it is).
 PIP := $(PY) -m pip install -q --no-compile --disable-pip-version-check -c constraints.txt
+UV  := $(PY) -m uv pip install -q --native-tls --python $(PY) -c constraints.txt --override debian-provided.txt
+INSTALL = $(UV) -r $(1) || { echo "uv failed: installing $(1) with pip"; $(PIP) -r $(1); }
 # the checks import numpy (its version) and pyvista (the renders) and only find the others, which the
 # stages import (importing them here is ~1 s each, the core's on the setup's critical path)
 MISSING = import importlib.util as u; m = [n for n in '$(1)'.split() if u.find_spec(n) is None]; assert not m, f'not installed: {m}'
-$(CORE): requirements-core.txt constraints.txt .apt-stamp
+$(CORE): requirements-core.txt constraints.txt debian-provided.txt .apt-stamp
 	@test -x $(PY) || /usr/bin/python3 -m venv --system-site-packages --without-pip .venv
-	$(PIP) -r requirements-core.txt
-	$(PY) -c "$(call MISSING,numba rocket_fft pydantic matplotlib tqdm); import numpy; assert numpy.__version__.startswith('1.24'), numpy.__version__"
+	$(PIP) uv || echo "no uv: installing with pip"
+	$(call INSTALL,requirements-core.txt)
+	$(PY) -c "$(call MISSING,numba rocket_fft pydantic matplotlib tqdm); import numpy; assert numpy.__version__.startswith('1.24'), numpy.__version__; assert numpy.__file__.startswith('/usr/lib/python3/'), numpy.__file__"
 	@touch $@
 
-# the renders' packages, beside the first stages: pip keeps the installed core packages (they satisfy
-# the pins), so nothing a running stage imports is replaced
+# the renders' packages, beside the first stages: the installed core packages satisfy the pins, so
+# nothing a running stage imports is replaced
 $(RENDER): requirements-render.txt $(CORE)
-	$(PIP) -r requirements-render.txt
+	$(call INSTALL,requirements-render.txt)
 	$(PY) -c "import pyvista"
 	@touch $@
 
 # the rest (studies, listening, tests), for the goals that need it
 $(STAMP): requirements.txt $(RENDER)
-	$(PIP) -r requirements.txt
+	$(call INSTALL,requirements.txt)
 	$(PY) -c "$(call MISSING,dolfinx slepc4py gmsh dask distributed pyfar pytest)"
 	@touch $@
 

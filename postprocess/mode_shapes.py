@@ -10,6 +10,7 @@ display needed) unless ``VTK_DEFAULT_OPENGL_WINDOW`` is already set.
 
 from __future__ import annotations
 
+import copy
 import os
 from typing import Sequence
 
@@ -22,6 +23,10 @@ import pyvista as pv  # noqa: E402
 from .mode_geometry import displacement_vectors, sweep_surface  # noqa: E402
 
 pv.OFF_SCREEN = True
+#: pyvista's theme without multisampling: llvmpipe's 8x MSAA (the default) is ~40 % of a render's
+#: time on one thread, for edges hardly seen at this size
+THEME = copy.deepcopy(pv.global_theme)
+THEME.multi_samples = 1
 
 __all__ = ["render_mode", "gallery_figure"]
 
@@ -77,9 +82,7 @@ def render_mode(
     deformed.points = np.asarray(base.points) + u
     deformed.point_data["rel. displ."] = mag / scale if scale > 0 else mag
 
-    # no multisampling: llvmpipe's 8x MSAA (pyvista's default) is ~40 % of a render's time on one
-    # thread, for edges that are hardly seen at this size
-    pl = pv.Plotter(off_screen=True, window_size=tuple(int(v) for v in window_size), multi_samples=1)
+    pl = pv.Plotter(off_screen=True, window_size=tuple(int(v) for v in window_size), theme=THEME)
     try:
         pl.set_background("white")
         # Undeformed reference: translucent grey body + its sharp edges.
