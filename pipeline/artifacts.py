@@ -139,7 +139,7 @@ def _unreadable(path: Path, exc: BaseException, make_target: str | None) -> Arti
 
 
 def save_npz(path: str | os.PathLike, kind: str, config: Mapping, /, **arrays: Any) -> dict:
-    """Atomically write ``arrays`` to a compressed ``.npz`` with provenance.
+    """Atomically write ``arrays`` to an ``.npz`` (uncompressed, as ``np.savez``) with provenance.
 
     The provenance record is stored as the entry ``__provenance__`` (a JSON
     string in a 0-d unicode array).  Object arrays are rejected
@@ -165,7 +165,9 @@ def save_npz(path: str | os.PathLike, kind: str, config: Mapping, /, **arrays: A
     with atomic_write(path) as tmp:
         # Written with zipfile + np.lib.format directly (what np.savez does
         # internally) so array names cannot collide with savez's arguments.
-        with zipfile.ZipFile(tmp, mode="w", compression=zipfile.ZIP_DEFLATED, compresslevel=1) as archive:
+        # Stored, not deflated: the arrays are floating-point numbers, which
+        # deflate shrinks by ~12 % (rail.npz: 66 -> 58 MB) for ~2 s of CPU.
+        with zipfile.ZipFile(tmp, mode="w", compression=zipfile.ZIP_STORED) as archive:
             for name, array in converted.items():
                 with archive.open(name + ".npy", mode="w", force_zip64=True) as member:
                     np.lib.format.write_array(member, array, allow_pickle=False)

@@ -7,9 +7,9 @@ import numpy as np
 
 from geometry.rail import head_profile
 from solvers import waveguide as wg
-from solvers.constants import F_MAX_HZ, RAIL_F_MIN_HZ
+from solvers.constants import F_MAX_HZ
 from solvers.rail_model import RailModel, assemble_rail_model
-from solvers.rail_response import decay_rates, evaluate_table, wave_table
+from solvers.rail_response import evaluate_table, wave_sum_decay_rate, wave_table
 
 
 def load_rail(path) -> dict:
@@ -37,8 +37,7 @@ def build_rail_model(rail: dict, msh_path, contact_y=None, basis: dict | None = 
                                verbose=verbose)
 
 
-def stage_arrays(model: RailModel, freqs, distances, ks=None, fmax: float = F_MAX_HZ,
-                 decay_freqs=None, head_y=None) -> dict:
+def stage_arrays(model: RailModel, freqs, distances, ks=None, fmax: float = F_MAX_HZ, head_y=None) -> dict:
     """All artifact arrays of a rail stage as a flat {name: ndarray} (SI):
 
     receptances    f_hz (nf,), x_m (nx,), point_y_m, point_z_m (np,),
@@ -46,7 +45,8 @@ def stage_arrays(model: RailModel, freqs, distances, ks=None, fmax: float = F_MA
                    [2 lateral to field, 3 vertical down], structural;
     wave table     wave_k (nf, M) complex rad/m, wave_a (nf, M, np, 2, 2)
                    complex m/N: G(x) = sum_n wave_a exp(-i wave_k |x|) at any x;
-    decay          decay_f_hz (nd,), decay_vertical_db_per_m, decay_lateral_db_per_m;
+    decay          decay_f_hz (nf,) = f_hz, decay_vertical_db_per_m, decay_lateral_db_per_m
+                   (at the head centre, from the same waves);
     dispersion     disp_k (nk,) rad/m and, for s in (free, supported),
                    fam in (sym, anti): disp_{s}_{fam}_f_hz (nk, nb) Hz (NaN
                    where a branch is absent), disp_{s}_{fam}_label (nb,),
@@ -59,14 +59,16 @@ def stage_arrays(model: RailModel, freqs, distances, ks=None, fmax: float = F_MA
     head profile   head_y_m (nh,), head_z_m (nh,) (z^R above the foot underside).
     """
     out = {}
-    T = wave_table(model, freqs)
+    # the contact points' wave table and, from the same waves, the head centre's (the decay rates)
+    points = model.rail.get("contact", {}).get("y", [])
+    T = wave_table(model, freqs, points=[*points, 0.0])
+    a_centre = T["a"][:, :, -1]
+    T.update(a=T["a"][:, :, :-1], y=T["y"][:-1], z=T["z"][:-1])
     x = np.asarray(distances, float)
     out.update(f_hz=T["f"], x_m=x, point_y_m=T["y"], point_z_m=T["z"], G=evaluate_table(T, x),
                wave_k=T["k"], wave_a=T["a"])
-    fd = np.geomspace(RAIL_F_MIN_HZ, float(np.max(freqs)), 200) if decay_freqs is None \
-        else np.asarray(decay_freqs, float)
-    d = decay_rates(model, fd)
-    out.update(decay_f_hz=fd, decay_vertical_db_per_m=d["vertical"], decay_lateral_db_per_m=d["lateral"])
+    out.update(decay_f_hz=T["f"], decay_vertical_db_per_m=wave_sum_decay_rate(T["k"], a_centre[..., 1, 1]),
+               decay_lateral_db_per_m=wave_sum_decay_rate(T["k"], a_centre[..., 0, 0]))
     ks = np.linspace(0.0, 30.0, 31) if ks is None else np.asarray(ks, float)
     out["disp_k"] = ks
     zc = model.props["torsion"]["z_centroid"]

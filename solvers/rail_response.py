@@ -191,11 +191,16 @@ def decay_rates(model: RailModel, freqs, y: float = 0.0, k_local: float = 20.0) 
         rf = getattr(model, fname)
         pr = _pairs_for(rf, y)[0 if comp == "y" else 1]
         Kf, Af = wave_amplitudes(rf, omegas, [pr], k_local=k_local)
-        g0 = Af[:, :, 0].sum(axis=1)
-        integ = decay_integral(Kf, Af)[0]
-        out[key] = 10 * np.log10(np.e) * np.abs(g0) ** 2 / integ
+        out[key] = wave_sum_decay_rate(Kf, Af[:, :, 0])
         out[f"min_wave_{fname}"] = DB_PER_NEPER * np.min(np.abs(Kf[:, :rf.size].imag), axis=1)
     return out
+
+
+def wave_sum_decay_rate(K: np.ndarray, a: np.ndarray) -> np.ndarray:
+    """The decay rate (dB/m) of the receptance G(x) = sum_n a[f, n] exp(-i K[f, n] |x|) at each
+    frequency: 10 log10(e) |G(0)|^2 / int_0^inf |G(x)|^2 dx (``decay_rates``; waves of zero
+    amplitude, e.g. the other family's in a wave table, add nothing)."""
+    return 10 * np.log10(np.e) * np.abs(a.sum(axis=1)) ** 2 / decay_integral(K, a[:, :, None])[0]
 
 
 def beam_transfer(model: RailModel, freqs, y: float = 0.0) -> dict:

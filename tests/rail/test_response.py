@@ -194,8 +194,12 @@ def test_stage_arrays_consistent():
     model = rail_model("bv50")
     f = np.array([60.0, 700.0, 3000.0])
     x = np.array([0.0, 0.4, 3.0])
-    A = stage_arrays(model, f, x, ks=np.array([0.0, 2.0, 10.0]), decay_freqs=f)
+    A = stage_arrays(model, f, x, ks=np.array([0.0, 2.0, 10.0]))
     assert A["G"].shape == (3, 3, 3, 2, 2)
+    # the decay rates, from the head centre's waves in the same table: decay_rates' own wave sums
+    d = rr.decay_rates(model, f)
+    assert np.allclose(A["decay_vertical_db_per_m"], d["vertical"], rtol=1e-9, atol=0)
+    assert np.allclose(A["decay_lateral_db_per_m"], d["lateral"], rtol=1e-9, atol=0)
     # the wave table reproduces G at any distance
     G = np.einsum("fnpij,fnx->pxfij", A["wave_a"], np.exp(-1j * A["wave_k"][:, :, None] * x[None, None, :]))
     assert np.allclose(G, A["G"], rtol=1e-12, atol=0)
