@@ -85,7 +85,7 @@ BV50 waveguide FE (issue: rail cross-section and waveguide FE with the pad): fro
 `geometry/rails/bv50.toml` to receptances G22, G33, G23 at the three contact points,
 **1000 frequencies (25 Hz - 6.5 kHz) x 200 distances (0 - 10 m)**, dispersion included;
 target < 120 s on 2 cores.  One fresh process (`benchmarks/rail.py`), single-threaded
-(OMP_NUM_THREADS=1; the reference BLAS of this machine is single-threaded anyway).
+(OMP_NUM_THREADS=1: OpenBLAS, Debian's libopenblas0-pthread, on one thread).
 
 | phase | warm JIT cache | cold (empty JIT cache) |
 |---|---|---|
