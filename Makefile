@@ -64,9 +64,10 @@ $(DEPS_MK): $(PKG_PY)
 
 .DEFAULT_GOAL := all
 # `make` (the default case) runs independent stages side by side, one job per core (wheel modes and
-# renders, contact next to the rail); other goals keep the command line's -j
+# renders, contact next to the rail); other goals keep the command line's -j.  nproc counts the cores
+# without OMP_NUM_THREADS, which it would honour (a shell with OMP_NUM_THREADS=1 got a serial make)
 ifeq ($(filter-out all report,$(or $(MAKECMDGOALS),all)),)
-  MAKEFLAGS += -j$(shell nproc 2>/dev/null || echo 1)
+  MAKEFLAGS += -j$(shell env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc 2>/dev/null || echo 1)
 endif
 .PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate stability stability-map listen report study check calibrate calibrate-profiles calibrate-coupling calibrate-wheel calibrate-suspension clean distclean FORCE
 .DELETE_ON_ERROR:

@@ -28,8 +28,10 @@ def fresh_make(commit: str) -> tuple[float, float]:
         repo = Path(d) / "repo"
         subprocess.run(["git", "clone", "-q", str(ROOT), str(repo)], check=True)
         subprocess.run(["git", "-C", str(repo), "checkout", "-q", commit], check=True)
+        # a user's shell: not `make bench`'s variables (its OMP_NUM_THREADS=1 made the previous Makefile's
+        # nproc, and so its make, serial)
         env = {k: v for k, v in os.environ.items() if k not in ("MAKEFLAGS", "MFLAGS", "MAKELEVEL", "CASE", "WHEEL",
-                                                               "RAIL", "BUILD", "PY")}
+                                                               "RAIL", "BUILD", "PY", "OMP_NUM_THREADS")}
         env["XDG_CACHE_HOME"] = str(Path(d) / "cache")
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         t0 = time.perf_counter()
