@@ -68,6 +68,10 @@ $(DEPS_MK): $(PKG_PY)
 # without OMP_NUM_THREADS, which it would honour (a shell with OMP_NUM_THREADS=1 got a serial make)
 ifeq ($(filter-out all report,$(or $(MAKECMDGOALS),all)),)
   MAKEFLAGS += -j$(shell env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc 2>/dev/null || echo 1)
+  # the contact (~15 s) after the wheel modes, so that the greens stage (~25 s) takes the core the modes
+  # leave: Make gives a freed core to the first job it found ready while both were busy, and the contact,
+  # needing nothing, would be that job (order only: the contact does not read the modes)
+  $(C)/contact.npz: | $(W)/modes.npz
 endif
 .PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate stability stability-map listen report study check calibrate calibrate-profiles calibrate-coupling calibrate-wheel calibrate-suspension clean distclean FORCE
 .DELETE_ON_ERROR:
@@ -175,10 +179,10 @@ FORCE:
 # parallel Make starts the jobs in the order of these lists (depth first, the rules read in this
 # order; the recipe's rule has none of its own, else its prerequisites would come first; the
 # order-only ones are here for that order only): the wheel mesh, the renders' pip step, the rail, the wheel
-# modes, the greens stage, the numba warm-up, the renders, the contact, simulate -> radiate
+# modes, the greens stage, the numba warm-up, the contact, the renders, simulate -> radiate
 $(BUILD)/report/$(CASE)/report.md: | $(W)/mesh.json $(RENDER)
 $(BUILD)/report/$(CASE)/report.md: $(CFILE) $(R)/rail.npz $(W)/modes.npz $(C)/greens.npz | $(JIT)
-$(BUILD)/report/$(CASE)/report.md: $(W)/shapes/gallery.png $(C)/contact.npz $(C)/simulate.npz $(C)/radiate.npz $(WFILE) $(RFILE) $(DEPS_report) $(wildcard $(BUILD)/studies/*/summary.md) $(wildcard $(C)/listen.npz)
+$(BUILD)/report/$(CASE)/report.md: $(C)/contact.npz $(W)/shapes/gallery.png $(C)/simulate.npz $(C)/radiate.npz $(WFILE) $(RFILE) $(DEPS_report) $(wildcard $(BUILD)/studies/*/summary.md) $(wildcard $(C)/listen.npz)
 $(BUILD)/report/$(CASE)/report.md:
 	$(PY) -m pipeline report --case $(CASE)
 
