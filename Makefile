@@ -63,8 +63,8 @@ $(DEPS_MK): $(PKG_PY)
 	$(DEPS_PY) pipeline/deps.py > $@.tmp && mv $@.tmp $@ || { rm -f $@.tmp; exit 1; }
 
 .DEFAULT_GOAL := all
-# `make` (the default case) runs independent stages side by side, one job per core (wheel modes and
-# renders, contact next to the rail); other goals keep the command line's -j.  nproc counts the cores
+# `make` (the default case) runs independent stages side by side, one job per core (the rail stage next
+# to the wheel modes, the greens stage and the numba warm-up); other goals keep the command line's -j.  nproc counts the cores
 # without OMP_NUM_THREADS, which it would honour (a shell with OMP_NUM_THREADS=1 got a serial make)
 ifeq ($(filter-out all report,$(or $(MAKECMDGOALS),all)),)
   MAKEFLAGS += -j$(shell env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc 2>/dev/null || echo 1)
