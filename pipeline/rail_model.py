@@ -8,7 +8,7 @@ import numpy as np
 from geometry.rail import head_profile
 from solvers import waveguide as wg
 from solvers.constants import F_MAX_HZ
-from solvers.rail_model import RailModel, assemble_rail_model
+from solvers.rail_model import RailModel, assemble_rail_model, contact_points
 from solvers.rail_response import evaluate_table, wave_sum_decay_rate, wave_table
 
 
@@ -60,8 +60,7 @@ def stage_arrays(model: RailModel, freqs, distances, ks=None, fmax: float = F_MA
     """
     out = {}
     # the contact points' wave table and, from the same waves, the head centre's (the decay rates)
-    points = model.rail.get("contact", {}).get("y", [])
-    T = wave_table(model, freqs, points=[*points, 0.0])
+    T = wave_table(model, freqs, points=[*contact_points(model.rail), 0.0])
     a_centre = T["a"][:, :, -1]
     T.update(a=T["a"][:, :, :-1], y=T["y"][:-1], z=T["z"][:-1])
     x = np.asarray(distances, float)

@@ -65,6 +65,11 @@ def section_functionals(fam: wg.Family, zc: float) -> dict:
     return out
 
 
+def contact_points(rail: dict) -> list:
+    """The rail's nominal contact points y^R (m): its parameter file's [contact] y (SPEC 2), or none."""
+    return list(rail.get("contact", {}).get("y", []))
+
+
 def assemble_rail_model(rail: dict, mesh, cell_tags, facet_tags, contact_y=None, basis: dict | None = None,
                         with_centre: bool = True, verbose: bool = False) -> RailModel:
     """The rail model of the half-section mesh (dolfinx mesh and its cell and facet tags, as
@@ -79,7 +84,7 @@ def assemble_rail_model(rail: dict, mesh, cell_tags, facet_tags, contact_y=None,
     mat = wg.material_moduli(rail, calib=calib)
     tors = wg.torsion_properties(mesh, ct)
     if contact_y is None:
-        contact_y = rail.get("contact", {}).get("y", [])
+        contact_y = contact_points(rail)
     ys = list(np.abs(contact_y)) + ([0.0] if with_centre else [])
     fams = {n: wg.family(asm, mat, n, supported=True) for n in ("sym", "anti")}
     py, pz, _ = _head_nodes(fams["sym"], rail, ys)

@@ -46,7 +46,7 @@ import numpy as np
 from scipy.sparse.linalg import splu
 
 from . import waveguide as wg
-from .rail_model import RailModel
+from .rail_model import RailModel, contact_points
 from .rail_reduced import ReducedFamily, decay_integral, evaluate, reduced_H, wave_amplitudes, waves  # noqa: F401
 
 DB_PER_NEPER = 20.0 / np.log(10.0)  # 8.686 dB per neper
@@ -81,7 +81,7 @@ def wave_table(model: RailModel, freqs, points=None, local: str = "exclude", k_l
         raise ValueError("local must be 'exclude' or 'fe'")
     freqs = np.asarray(freqs, float)
     if points is None:
-        points = model.rail.get("contact", {}).get("y", [])
+        points = contact_points(model.rail)
     points = np.asarray(points, float)
     missing = [y for y in points if not np.any(np.isclose(abs(y), model.point_y, atol=1e-9))]
     if missing:
