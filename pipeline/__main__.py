@@ -84,20 +84,9 @@ def main(argv=None) -> int:
 
     try:
         if args.stage == "check":
-            from . import paths
-            from .config import load
-            from .schemas import CASE
-            from .wheel_stage import load_wheel
+            from .check import run_check
 
-            load_wheel(args.wheel)
-            from .rail_stage import load_rail_params
-
-            load_rail_params(args.rail)
-            case_path = paths.case_file(args.case)
-            if not case_path.exists():
-                raise ConfigError(str(case_path), detail=f"no such case; available: {paths.available(paths.cases())}")
-            load(case_path, CASE)
-            print(f"wheel {args.wheel}, rail {args.rail} and case {args.case}: configuration OK")
+            print("\n".join(run_check(args.case, args.wheel, args.rail)))
         elif args.stage == "stability_map":
             from .study.screen import run_stability_map
 
@@ -118,6 +107,10 @@ def main(argv=None) -> int:
     except (ConfigError, ArtifactError) as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:       # Ctrl-C: one line; the artifacts written so far are whole (atomic writes)
+        print(f"interrupted: {args.stage} stopped; the artifacts it had finished are kept, nothing half-written",
+              file=sys.stderr)
+        return 130
     return 0
 
 

@@ -39,7 +39,7 @@ def contact_setup(case: str) -> tuple[dict, dict, dict, object, dict]:
     c, pw, pr, geo = case_contact(case)
     cfg = {"case": {k: c[k] for k in ("contact", "kinematics", "loading", "time")},
            "wheel": {k: pw[k] for k in ("tyre", "flange", "material")}, "rail": pr,
-           "friction": case_friction(c).config(), "dy": DY, "running_surfaces": geo.config}
+           "friction": case_friction(c, case).config(), "dy": DY, "running_surfaces": geo.config}
     return c, pw, pr, geo, cfg
 
 
@@ -142,7 +142,11 @@ def build_contact(c: dict, pw: dict, geo, n_table: int = 41, frictions=None, cur
 def run_contact(case: str) -> dict:
     from .friction import contact_curve_cache
 
+    from .check import over_radial_note
+
     c, pw, pr, geo, cfg = contact_setup(case)
+    if over_radial_note(c):
+        log.warning("note: case %s: %s", case, over_radial_note(c))
     t0 = time.perf_counter()
     cache = contact_curve_cache(case)
     arrays = build_contact(c, pw, geo, curve=cache)

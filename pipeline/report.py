@@ -191,6 +191,8 @@ the limit cycle in the file is {float(a['wav_L_p']):.1f} dB at {float(a['wav_f_p
 
 
 def run_report(case: str) -> str:
+    from .friction import case_friction
+
     cpath = paths.case_file(case)
     c = load(cpath, CASE)
     out = paths.build() / "report" / case
@@ -198,8 +200,12 @@ def run_report(case: str) -> str:
     figdir.mkdir(parents=True, exist_ok=True)
     sections = [f"# Curve squeal report: case `{case}`\n\n{c['description']}\n\n"
                 f"Case file `{paths.shown(cpath)}`: wheel `{c['wheel']}`, rail `{c['rail']}`, dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm, "
-                f"mu = {c['friction']['mu']}, gamma_y = {c['kinematics']['gamma_y']}, v = {3.6 * c['kinematics']['speed']:.0f} km/h.\n",
+                f"{case_friction(c, case).text}, gamma_y = {c['kinematics']['gamma_y']}, v = {3.6 * c['kinematics']['speed']:.0f} km/h.\n",
                 wheel_section(c["wheel"], figdir), rail_section(c["rail"], figdir)]
+    from .check import over_radial_note
+
+    if over_radial_note(c):
+        sections.insert(1, f"**Note.** {over_radial_note(c)}.\n")
     from .contact_stage import contact_inputs
 
     sections.append(contact_section(case, contact_inputs(case)[3], figdir))

@@ -40,7 +40,7 @@ def case_linear_model(case: str, mu: float | None = None, gamma_y: float | None 
     if mu is None:
         from .friction import case_friction
 
-        mu = case_friction(c)
+        mu = case_friction(c, case)
     else:
         from .friction import with_curves
 
