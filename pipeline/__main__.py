@@ -47,6 +47,18 @@ RUNNERS = {
 
 
 def main(argv=None) -> int:
+    """The CLI; Ctrl-C (KeyboardInterrupt) anywhere ends it with one line and exit code 130 (the
+    artifacts written before are whole: every write is atomic)."""
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:
+        stage = next((a for a in (sys.argv[1:] if argv is None else argv) if a in STAGES), "the stage")
+        print(f"interrupted: {stage} stopped; the artifacts it had finished are kept, nothing half-written",
+              file=sys.stderr)
+        return 130
+
+
+def _main(argv=None) -> int:
     ap = argparse.ArgumentParser(prog="python -m pipeline", description="Curve squeal pipeline stages.",
                                  formatter_class=argparse.RawDescriptionHelpFormatter,
                                  epilog="stages:\n" + "\n".join(f"  {k:8s} {v}" for k, v in STAGES.items()))
@@ -107,10 +119,6 @@ def main(argv=None) -> int:
     except (ConfigError, ArtifactError) as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
-    except KeyboardInterrupt:       # Ctrl-C: one line; the artifacts written so far are whole (atomic writes)
-        print(f"interrupted: {args.stage} stopped; the artifacts it had finished are kept, nothing half-written",
-              file=sys.stderr)
-        return 130
     return 0
 
 
