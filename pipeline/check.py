@@ -71,9 +71,13 @@ def run_check(case: str, wheel: str | None, rail: str | None) -> list[str]:
         load_wheel(wheel)
     if rail:
         load_rail_params(rail)
-    case_path = paths.case_file(case)
-    if not case_path.exists():
-        raise ConfigError(str(case_path), detail=f"no such case; available: {paths.available(paths.cases())}")
+    try:
+        case_path = paths.case_file(case)
+    except ValueError as e:
+        raise ConfigError("command line", detail=f"--case {case}: {e}") from None
+    why = paths.missing_case(case)
+    if why:
+        raise ConfigError(str(case_path), detail=why)
     c = load(case_path, CASE)
     friction = case_friction(c, case)
     pw, _ = load_wheel(c["wheel"])

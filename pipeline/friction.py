@@ -18,7 +18,7 @@ import functools
 import hashlib
 import logging
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -33,20 +33,25 @@ CURVE_KIND = "friction-curve"
 
 @dataclass(frozen=True)
 class Friction:
-    """A resolved friction law: ``name`` ('coulomb', ...), ``params`` ((name, value), ... sorted)
-    in the units of the registry (``solvers.contact.friction_laws.LAWS``), ``preset``: the
-    friction-modifier preset it came from (or None)."""
-    name: str = "coulomb"
-    params: tuple = ()
+    """A resolved friction law (``ResolvedCase.friction``): ``law`` ('coulomb', ...), ``params``
+    {name: value} in the units of the registry (``solvers.contact.friction_laws.LAWS``),
+    ``preset``: the friction-modifier preset it came from (or None); ``mu``: the coefficient
+    (``name`` is ``law``, as a ``FrictionLaw`` names itself)."""
+    law: str = "coulomb"
+    params: dict = field(default_factory=dict)
     preset: str | None = None
 
     @classmethod
     def coulomb(cls, mu: float) -> "Friction":
-        return cls("coulomb", (("mu", float(mu)),))
+        return cls("coulomb", {"mu": float(mu)})
 
     @classmethod
     def of(cls, name: str, params: dict, preset: str | None = None) -> "Friction":
-        return cls(name, tuple(sorted((k, float(v)) for k, v in params.items())), preset)
+        return cls(name, {k: float(v) for k, v in sorted(params.items())}, preset)
+
+    @property
+    def name(self) -> str:
+        return self.law
 
     @property
     def label(self) -> str:
@@ -58,12 +63,11 @@ class Friction:
     def mu(self) -> float:
         """The Coulomb coefficient; for another law its local coefficient at zero slip speed
         (the static coefficient)."""
-        p = dict(self.params)
-        if self.name == "coulomb":
-            return float(p["mu"])
-        return float(np.asarray(self.law().mu(np.zeros(1)), float).ravel()[0])
+        if self.law == "coulomb":
+            return float(self.params["mu"])
+        return float(self.solver_law().mu_static)
 
-    def law(self):
+    def solver_law(self):
         """The solver's argument: the float mu for the Coulomb law (today's call of ``rf_curve``,
         bit for bit), else the registry's ``FrictionLaw``."""
         if self.name == "coulomb":
@@ -164,7 +168,7 @@ def compute_curve(p3, dx: float, dy: float, v: float, friction: Friction, E: flo
     """One curve, computed (no cache): ``rf_curve``'s fields as arrays (numeric fields only)."""
     from solvers.contact.friction import rf_curve
 
-    curve = rf_curve(p3, dx, dy, v, friction.law(), E, nu)
+    curve = rf_curve(p3, dx, dy, v, friction.solver_law(), E, nu)
     out = {}
     for k, val in curve._asdict().items():
         a = np.asarray(val)

@@ -76,7 +76,7 @@ def test_presets_and_laws_resolve_to_the_registry():
     assert f.label == curve_label(get_friction_law("linear", **PRESETS["hpf"]["params"]))
     g = resolve_friction({"law": "exponential", "fkin": 0.14, "fexp1": 0.19, "sabsh1": 1250.0}, "x.toml")
     assert dict(g.params)["sabsh2"] == 10000.0 and g.mu == pytest.approx(0.33)       # fstat = fkin + fexp1
-    assert resolve_friction({"mu": 0.35}, "x.toml").law() == 0.35                    # Coulomb: the float, as before
+    assert resolve_friction({"mu": 0.35}, "x.toml").solver_law() == 0.35                    # Coulomb: the float, as before
 
 
 @pytest.mark.parametrize("line,words", [
