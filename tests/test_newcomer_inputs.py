@@ -90,13 +90,9 @@ def test_missing_or_invalid_profile(tmp_path, line, words):
 
 def test_contact_points_found_by_check(tmp_path):
     """The rigid contact search runs in check: a wheelset pushed into flange contact is refused
-    there, as the contact stage would refuse it; a contact point the rail model has no node for,
-    as the greens stage would refuse it."""
+    there, as the contact stage would refuse it."""
     env = _case(tmp_path, "fl", DEFAULT.replace("dy_wr = -0.015", "dy_wr = 0.020"))
     _refused(tmp_path, _check(env, "fl"), "fl.toml", "dy_WR = +20.0 mm", "flange contact", "contact angle +71 deg")
-    env = _case(tmp_path, "rn", DEFAULT.replace("dy_wr = -0.015", "dy_wr = -0.028"))
-    _refused(tmp_path, _check(env, "rn"), "bv50.toml", "case 'rn', dy_WR = -28.0 mm",
-             "the rail model has no receptance at the contact point", "contact.y")
 
 
 def test_decay_time_of_an_exponential():
