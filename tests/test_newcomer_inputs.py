@@ -129,11 +129,20 @@ def test_time_step_the_rail_kernel_cannot_decay_in(tmp_path):
     kernel = list((tmp_path / "build").rglob("*.npz"))
     r = _check(env, "dt")
     assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1, r.stderr
-    assert f"time.dt = 2e-05 (float): expected {2 * T / RAIL_NT:.3g} <= dt <= 0.0002" in r.stderr, r.stderr
+    assert f"time.dt = 2e-05 (float): expected {2 * T / RAIL_NT:.3g} <= dt < 7.69e-05" in r.stderr, r.stderr
     assert "decay by 60 dB within N_t dt / 2 = 82 ms" in r.stderr
     assert list((tmp_path / "build").rglob("*.npz")) == kernel                  # nothing written
     env = _case(tmp_path, "ok", DEFAULT.replace("dt = 36e-6", f"dt = {1.01 * 2 * T / RAIL_NT:.4g}"))
     assert _check(env, "ok").returncode == 0
+
+
+def test_time_step_above_the_models_band(tmp_path):
+    """dt = 1e-4 (in the schema's range): the greens stage stopped with a traceback (the wheel
+    kernel's band-limited fit up to 6.5 kHz above the Nyquist frequency of 5 kHz); check refuses
+    it naming the band and the Nyquist frequency."""
+    env = _case(tmp_path, "big", DEFAULT.replace("dt = 36e-6", "dt = 1e-4"))
+    _refused(tmp_path, _check(env, "big"), "big.toml", "time.dt = 0.0001 (float): expected dt < 7.69e-05",
+             "fitted up to 6.5 kHz", "Nyquist frequency 1 / (2 dt) = 5.00 kHz")
 
 
 def test_positive_gamma_y_is_explained(tmp_path):
