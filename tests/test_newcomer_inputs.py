@@ -132,6 +132,11 @@ def test_time_step_the_rail_kernel_cannot_decay_in(tmp_path):
     assert f"time.dt = 2e-05 (float): expected {2 * T / RAIL_NT:.3g} <= dt < 7.69e-05" in r.stderr, r.stderr
     assert "decay by 60 dB within N_t dt / 2 = 82 ms" in r.stderr
     assert list((tmp_path / "build").rglob("*.npz")) == kernel                  # nothing written
+    for stage in ("contact", "greens"):                      # the stages refuse it the same way
+        s = subprocess.run([sys.executable, "-m", "pipeline", stage, "--case", "dt"], cwd=ROOT, env=env,
+                           capture_output=True, text=True)
+        assert s.returncode == 2 and s.stderr.strip().splitlines() == r.stderr.strip().splitlines(), s.stderr
+    assert list((tmp_path / "build").rglob("*.npz")) == kernel
     env = _case(tmp_path, "ok", DEFAULT.replace("dt = 36e-6", f"dt = {1.01 * 2 * T / RAIL_NT:.4g}"))
     assert _check(env, "ok").returncode == 0
 
