@@ -120,14 +120,19 @@ def _stage_rows() -> list:
             return time.perf_counter() - t0, r.stderr
 
         t_c, _ = stage("contact")
-        t_g, _ = stage("greens")
+        t_g, log_g = stage("greens")
         t_imp = min(_import_time(env) for _ in range(2))
     t_rf = _rf_time()
+    line = [x for x in log_g.splitlines() if "greens newpoint: wheel" in x]
+    t_wheel = float(line[0].split(") in ")[1].split(" s;")[0]) if line else float("nan")
+    t_rail = float(line[0].split(") in ")[-1].split(" s ")[0]) if line else float("nan")
     n_rf = 11
     rows = [f"| contact stage (fresh process; NORM table, compliance, {n_rf} friction curves) | {t_c:.1f} s |",
             f"| of which the {n_rf} friction curves (one curve: {t_rf:.2f} s, timed apart) | {n_rf * t_rf:.1f} s |",
             f"| greens stage (fresh process; wheel kernel and modal filters, rail kernel from the surface table, "
             f"plots) | {t_g:.1f} s |",
+            f"| of which the wheel kernel and modal filters (Kropp on N_t ~ 2.8e6) | {t_wheel:.1f} s |",
+            f"| of which the rail kernel from the surface table | {t_rail:.1f} s |",
             f"| of which the process start and imports (python -c 'import pipeline.greens_stage ...') | {t_imp:.1f} s |",
             f"| **contact + greens, as they run today** | **{t_c + t_g:.1f} s** |",
             f"| contact + greens with one friction curve (the case's mu, issue 26) | {t_c + t_g - (n_rf - 1) * t_rf:.1f} s |"]

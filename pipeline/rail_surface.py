@@ -111,7 +111,13 @@ def point_waves(pr: dict, rail_hash: str, y_r: float, dt: float, grid: dict) -> 
     try:
         w, _ = artifacts.load_npz(folder / "waves.npz", KIND_WAVES, cfg)
     except artifacts.ArtifactError:
-        build_table(pr, dt, grid, folder, cfg)
+        import fcntl
+
+        folder.mkdir(parents=True, exist_ok=True)
+        with open(folder / ".lock", "w") as lock:     # one builder at a time (cases side by side, study workers)
+            fcntl.flock(lock, fcntl.LOCK_EX)
+            if not (folder / "waves.npz").exists():   # built by another process meanwhile
+                build_table(pr, dt, grid, folder, cfg)
         w, _ = artifacts.load_npz(folder / "waves.npz", KIND_WAVES, cfg)
     idx, N = point_weights(w["y_nodes"], w["vertex"], y_r)
     psi = np.stack([artifacts.load_npz(folder / f"node_{i}.npz", KIND_NODE, cfg)[0]["psi"] for i in idx], axis=2)
