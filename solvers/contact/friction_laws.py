@@ -113,7 +113,7 @@ LAWS: dict[str, Law] = {
                   "mu(s) = mu0 ((1 - A) exp(-B s) + A)",
                   "Polach's exponential falling law (CONTACT L=5 converts it to L=4)",
                   "O. Polach, Creep forces in simulations of traction vehicles running on adhesion limit, "
-                  "Wear 258 (2005) 992-1000, eq. (13); CONTACT user guide eq. polach_law"),
+                  "Wear 258 (2005) 992-1000; CONTACT user guide eq. polach_law"),
 }
 
 
@@ -171,8 +171,8 @@ def mu_of(code, array, s):
 
 @numba.njit(cache=True)
 def dmu_of(code, array, s):
-    """d mu / d|s| [s/m] at slip speed |s| (the linear law: the slope left of its kink
-    at s = 2 sabsh, 0 beyond)."""
+    """d mu / d|s| [s/m] at slip speed |s| (the linear law: its slope below the kink at
+    s = 2 sabsh, 0 from there on)."""
     s = abs(s)
     if code == 0:
         return 0.0

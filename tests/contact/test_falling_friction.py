@@ -88,7 +88,7 @@ def test_contact_peer_report(contact):
         force, mz = deviations(ours, ref)
         assert force.max() < 5e-3
         res[name] = ours
-        for s, (label, *_ ) in enumerate(SETS):
+        for s, (label, *_) in enumerate(SETS):
             sl = slice(s * len(CREEP), (s + 1) * len(CREEP))
             mag = np.hypot(ref[sl, 0], ref[sl, 1])
             rows.append(f"| {name} | {label} | {mag.max():.4f} at {CREEP[int(np.argmax(mag))]:g} | {mag[-1]:.4f} | "
