@@ -146,3 +146,25 @@ def test_off_list_contact_cases_run_end_to_end(case):
     with np.load(paths.case_dir(case) / "greens.npz") as g, np.load(paths.case_dir(case) / "radiate.npz") as w:
         assert abs(float(g["y_rail"]) - float(g["y_rail_contact"])) < 1e-12  # the point itself, not a node near it
         assert float(w["L_F2"]) > 10.0 and np.isfinite(float(w["L_W"]))
+
+
+def test_a_curve_wheel_runs_through_the_cli(tmp_path):
+    """A curve wheel's case file (as the curve stage writes it) is a case for every stage:
+    `check` and `contact --case r150/a1i` put the artifact in build/cases/r150/a1i/."""
+    import os
+    import subprocess
+    import sys
+
+    f = tmp_path / "curves" / "r150" / "cases" / "a1i.toml"
+    f.parent.mkdir(parents=True)
+    f.write_text((paths.ROOT / "pipeline/cases/default.toml").read_text().replace('name = "default"', 'name = "a1i"'))
+    env = dict(os.environ, SQUEAL_BUILD_DIR=str(tmp_path), OMP_NUM_THREADS="1")
+    for stage in ("check", "contact"):
+        r = subprocess.run([sys.executable, "-m", "pipeline", stage, "--case", "r150/a1i"], cwd=paths.ROOT, env=env,
+                           capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
+    assert (tmp_path / "cases" / "r150" / "a1i" / "contact.npz").exists()
+    r = subprocess.run([sys.executable, "-m", "pipeline", "contact", "--case", "r150/a2o"], cwd=paths.ROOT, env=env,
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and r.stderr.strip().endswith("run make curve CURVE=r150 first")
+    assert len(r.stderr.strip().splitlines()) == 1
