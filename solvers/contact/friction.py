@@ -14,11 +14,18 @@ up to the ramp's end (|gamma_y| = 0.05).  Solved in order of increasing
 creepage, each solve warm-started from the previous one (TANG's FFT-based Newton-Krylov
 solver: a whole curve on the ~350-element wheel/rail contact takes ~0.1-0.2 s).
 
-The curve is stored as arrays (s, mu_RF, slopes) of a monotone piecewise-cubic
-Hermite interpolant (Fritsch-Carlson), evaluated by the njit function mu_rf().
+The curve is stored as arrays (s, mu_RF, slopes) of a shape-preserving piecewise-cubic
+Hermite interpolant (Fritsch-Carlson: monotone between the nodes, flat at a node where the data
+turn), evaluated by the njit function mu_rf().  A Coulomb curve is constant beyond its last
+node (the full-slip plateau).  A falling law's global curve (it rises to a peak and falls) ends
+with a node at s = +inf holding the asymptote mu_inf: beyond the last finite node s_n the curve
+continues as the exponential tail mu_inf + (mu_n - mu_inf) exp(-(s - s_n) / s_c) with s_c =
+(mu_n - mu_inf) / |mu'_n|, so value and slope are continuous there (``solvers.contact.falling``
+builds such curves).
 """
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numba
@@ -60,8 +67,10 @@ def creepage_nodes(gamma_sat, n_bend=18, n_plateau=5, gamma_end=GAMMA_END):
     return np.concatenate([[0.0], bend, plateau])
 
 
-def monotone_slopes(x, y):
-    """Fritsch-Carlson slopes of the monotone cubic Hermite interpolant (PCHIP)."""
+def monotone_slopes(x, y, end_slope=0.0):
+    """Fritsch-Carlson slopes of the shape-preserving cubic Hermite interpolant (PCHIP: monotone
+    on every interval, slope 0 at a node where the data turn); ``end_slope`` at the last node
+    (0: a plateau follows; a falling curve's tail slope)."""
     h = np.diff(x)
     delta = np.diff(y) / h
     d = np.zeros_like(y)
@@ -70,7 +79,7 @@ def monotone_slopes(x, y):
             w1, w2 = 2 * h[k] + h[k - 1], h[k] + 2 * h[k - 1]
             d[k] = (w1 + w2) / (w1 / delta[k - 1] + w2 / delta[k])
     d[0] = delta[0]             # one-sided at the ends (mu_RF rises linearly from 0)
-    d[-1] = 0.0 if len(x) > 2 else delta[-1]
+    d[-1] = (0.0 if len(x) > 2 else delta[-1]) if end_slope == 0.0 else end_slope
     return d
 
 
@@ -101,9 +110,10 @@ def rf_curve(p3, dx, dy, v, mu, E=210e9, nu=0.3, *, gammas=None, n_bend=18, n_pl
 
 @numba.njit(cache=True)
 def mu_and_slope(s, s_nodes, mu_nodes, slopes):
-    """mu_RF(|s|) and its derivative d mu_RF / d|s|: monotone cubic Hermite
-    between the nodes, constant (derivative 0) beyond the last node (the full
-    slip plateau)."""
+    """mu_RF(|s|) and its derivative d mu_RF / d|s|: shape-preserving cubic Hermite between the
+    nodes; beyond the last node constant (derivative 0: the full slip plateau), or, for a curve
+    whose last node is at s = +inf (a falling law, module notes), the exponential tail from the
+    last finite node down to mu_nodes[-1]."""
     s = abs(s)
     n = s_nodes.shape[0]
     if s >= s_nodes[n - 1]:
@@ -111,6 +121,13 @@ def mu_and_slope(s, s_nodes, mu_nodes, slopes):
     k = np.searchsorted(s_nodes, s, side="right") - 1
     if k < 0:
         k = 0
+    if k == n - 2 and s_nodes[n - 1] == np.inf:       # falling tail beyond the last finite node
+        a = mu_nodes[k] - mu_nodes[n - 1]
+        d = slopes[k]
+        if a <= 0.0 or d >= 0.0:
+            return mu_nodes[k], 0.0
+        e = math.exp(d * (s - s_nodes[k]) / a)
+        return mu_nodes[n - 1] + a * e, d * e
     h = s_nodes[k + 1] - s_nodes[k]
     t = (s - s_nodes[k]) / h
     t2, t3 = t * t, t * t * t
