@@ -35,7 +35,9 @@ def contact_setup(case: str) -> tuple[dict, dict, dict, object, dict]:
     from .profiles import case_contact
 
     c, pw, pr, geo = case_contact(case)
-    cfg = {"case": {k: c[k] for k in ("contact", "kinematics", "loading", "time")},
+    case_cfg = {k: c[k] for k in ("contact", "kinematics", "loading", "time")}
+    case_cfg["kinematics"] = {k: v for k, v in case_cfg["kinematics"].items() if k != "spin"}   # issue 26: not an input here
+    cfg = {"case": case_cfg,
            "wheel": {k: pw[k] for k in ("tyre", "flange", "material")}, "rail": pr, "mu_values": MU_VALUES.tolist(),
            "dy": DY, "running_surfaces": geo.config}
     return c, pw, pr, geo, cfg
