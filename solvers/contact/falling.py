@@ -9,10 +9,11 @@ the law's own (the tail continues it with value and slope continuous).
 ``scaled_curve`` makes such a curve from a Coulomb curve of the same contact: mu_RF(s) =
 mu_RF^C(s) mu_law(s) / mu, the Coulomb curve's saturation times the law at the rigid slip
 velocity.  This is exact in full slip (every element slips at |w|: F = mu_law(|w|) F3) and in the
-linear range (both vanish with the same creep stiffness); in between it is the usual
-approximation of point-contact squeal models with falling friction (e.g. Heckl & Abrahams, JSV
-2000; Meehan & Liu, JSV 2018 use the local law at the global slip directly).  TANG with the local
-law (``rf_curve(..., law)``) gives the curve the project uses where it is available.
+linear range (both vanish with the same creep stiffness); in between it is an approximation in
+the spirit of the point-contact squeal models with a falling creep curve (Heckl and Abrahams,
+JSV 229, 2000; Meehan and Liu, JSV 413, 2018, an experimentally tuned creep curve that rises and
+falls).  TANG with the local law (``rf_curve(..., law)``) gives the curve the project uses where
+it is available.
 """
 from __future__ import annotations
 
