@@ -10,50 +10,34 @@ import importlib
 import logging
 import sys
 
-STAGES = {
-    "mesh": "mesh the wheel cross-section (Gmsh) -> build/wheels/<wheel>/section.msh",
-    "modes": "wheel modes per Fourier harmonic (dolfinx + SLEPc), classified -> modes.npz, modes.csv",
-    "shapes": "offscreen 3D renders of every wheel mode and a gallery -> shapes/*.png",
-    "rail": "rail cross-section, waveguide FE, dispersion and receptances -> build/rails/<rail>/rail.npz",
-    "contact": "contact of the case: gap, NORM table, compliance, friction curves -> build/cases/<case>/contact.npz",
-    "greens": "wheel Green's function (Kropp, modal filters) and moving rail Green's function -> greens.npz",
-    "simulate": "time-domain wheel/rail interaction of the case (numba) -> build/cases/<case>/simulate.npz",
-    "radiate": "sound power of the wheel under the simulated contact forces (Thompson-Jones) -> radiate.npz",
-    "stability": "frequency-domain stability screen of the case (linearised time loop) -> stability.npz, .csv, .png",
-    "stability_map": "the stability screen over a map study's grid (--study, --quick) -> build/studies/<study>/stability.csv",
-    "listen": "what a listener hears: sound pressure at a receiver, dB(A), 1/3 octaves, a calibrated WAV -> listen.*",
-    "report": "gather the case's results (wheel, rail, contact, Green's functions, interaction) -> build/report/<case>/report.md",
-    "check": "validate the configuration files only (no computation)",
-    "study": "a parameter study on Dask (SPEC 7): --study map|damping|contact -> build/studies/<study>/",
-}
-
+from .stages import STAGES
 
 # the stages that run numba code (pipeline/numba_setup.py)
-NUMBA_STAGES = {"contact", "greens", "simulate", "stability", "stability_map", "listen", "study"}
-
-# stage -> (module of pipeline/, function, the CLI argument it takes)
-RUNNERS = {
-    "mesh": ("wheel_stage", "run_mesh", "wheel"),
-    "modes": ("wheel_stage", "run_modes", "wheel"),
-    "shapes": ("wheel_stage", "run_shapes", "wheel"),
-    "rail": ("rail_stage", "run_rail", "rail"),
-    "contact": ("contact_stage", "run_contact", "case"),
-    "greens": ("greens_stage", "run_greens", "case"),
-    "simulate": ("simulate_stage", "run_simulate", "case"),
-    "radiate": ("radiate_stage", "run_radiate", "case"),
-    "stability": ("stability_stage", "run_stability", "case"),
-    "report": ("report", "run_report", "case"),
-}
+NUMBA_STAGES = {name for name, st in STAGES.items() if st.numba}
 
 
 def main(argv=None) -> int:
+    """The CLI; Ctrl-C (KeyboardInterrupt) anywhere ends it with one line and exit code 130 (the
+    artifacts written before are whole: every write is atomic)."""
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:
+        stage = next((a for a in (sys.argv[1:] if argv is None else argv) if a in STAGES), "the stage")
+        print(f"interrupted: {stage} stopped; the artifacts it had finished are kept, nothing half-written",
+              file=sys.stderr)
+        return 130
+
+
+def _main(argv=None) -> int:
     ap = argparse.ArgumentParser(prog="python -m pipeline", description="Curve squeal pipeline stages.",
                                  formatter_class=argparse.RawDescriptionHelpFormatter,
-                                 epilog="stages:\n" + "\n".join(f"  {k:8s} {v}" for k, v in STAGES.items()))
+                                 epilog="stages:\n" + "\n".join(f"  {k:8s} {v.help}" for k, v in STAGES.items()))
     ap.add_argument("stage", choices=list(STAGES))
     ap.add_argument("--wheel", default="c20", help="wheel parameter file geometry/wheels/<name>.toml (default c20)")
     ap.add_argument("--rail", default="bv50", help="rail parameter file geometry/rails/<name>.toml (default bv50)")
-    ap.add_argument("--case", default="default", help="case file pipeline/cases/<name>.toml (default: default)")
+    ap.add_argument("--case", default="default", help="case file pipeline/cases/<name>.toml, or a curve's wheel "
+                    "<curve>/<wheel> (build/curves/<curve>/cases/<wheel>.toml, written by the curve stage) "
+                    "(default: default)")
     ap.add_argument("--workers", type=int, default=None,
                     help="processes for the harmonic solves, Dask workers of a study's local cluster (default: cores)")
     ap.add_argument("--study", default="map", help="study file pipeline/studies/<name>.toml (default: map)")
@@ -74,8 +58,15 @@ def main(argv=None) -> int:
     level = logging.WARNING if args.quiet else (logging.INFO if args.verbose < 2 else logging.DEBUG)
     logging.basicConfig(level=level, format="%(levelname)s %(name)s: %(message)s")
 
+    from . import paths
     from .artifacts import ArtifactError
     from .config import ConfigError
+
+    try:
+        paths.curve_wheel(args.case)  # a case file's name, or a curve's wheel <curve>/<wheel>
+    except ValueError as e:
+        print(f"error: --case: {e}", file=sys.stderr)
+        return 2
 
     if args.stage in NUMBA_STAGES:
         from .numba_setup import skip_special
@@ -84,20 +75,9 @@ def main(argv=None) -> int:
 
     try:
         if args.stage == "check":
-            from . import paths
-            from .config import load
-            from .schemas import CASE
-            from .wheel_stage import load_wheel
+            from .check import run_check
 
-            load_wheel(args.wheel)
-            from .rail_stage import load_rail_params
-
-            load_rail_params(args.rail)
-            case_path = paths.case_file(args.case)
-            if not case_path.exists():
-                raise ConfigError(str(case_path), detail=f"no such case; available: {paths.available(paths.cases())}")
-            load(case_path, CASE)
-            print(f"wheel {args.wheel}, rail {args.rail} and case {args.case}: configuration OK")
+            print("\n".join(run_check(args.case, args.wheel, args.rail)))
         elif args.stage == "stability_map":
             from .study.screen import run_stability_map
 
@@ -112,9 +92,9 @@ def main(argv=None) -> int:
 
             run_listen(args.case, distance=args.distance, height=args.height, allow_silent=args.allow_silent)
         else:
-            module, func, arg = RUNNERS[args.stage]
-            run = getattr(importlib.import_module(f".{module}", __package__), func)
-            run(getattr(args, arg), *([args.workers] if args.stage == "modes" else []))
+            st = STAGES[args.stage]
+            run = getattr(importlib.import_module(f".{st.module}", __package__), st.function)
+            run(getattr(args, st.takes), *([args.workers] if args.stage == "modes" else []))
     except (ConfigError, ArtifactError) as e:
         print(f"error: {e}", file=sys.stderr)
         return 2

@@ -15,8 +15,6 @@ import numpy as np
 from solvers.constants import SQUEAL_LEVEL_DB
 
 from . import artifacts, paths
-from .config import load
-from .schemas import CASE
 
 log = logging.getLogger("pipeline.report")
 
@@ -191,15 +189,21 @@ the limit cycle in the file is {float(a['wav_L_p']):.1f} dB at {float(a['wav_f_p
 
 
 def run_report(case: str) -> str:
-    cpath = paths.case_file(case)
-    c = load(cpath, CASE)
+    from .case import resolve_case
+
+    rc = resolve_case(case)
+    cpath, c = rc.case_file, rc.case
     out = paths.build() / "report" / case
     figdir = out / "figures"
     figdir.mkdir(parents=True, exist_ok=True)
     sections = [f"# Curve squeal report: case `{case}`\n\n{c['description']}\n\n"
                 f"Case file `{paths.shown(cpath)}`: wheel `{c['wheel']}`, rail `{c['rail']}`, dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm, "
-                f"mu = {c['friction']['mu']}, gamma_y = {c['kinematics']['gamma_y']}, v = {3.6 * c['kinematics']['speed']:.0f} km/h.\n",
+                f"{rc.friction.text}, gamma_y = {c['kinematics']['gamma_y']}, v = {3.6 * c['kinematics']['speed']:.0f} km/h.\n",
                 wheel_section(c["wheel"], figdir), rail_section(c["rail"], figdir)]
+    from .check import over_radial_note
+
+    if over_radial_note(c):
+        sections.insert(1, f"**Note.** {over_radial_note(c)}.\n")
     from .contact_stage import contact_inputs
 
     sections.append(contact_section(case, contact_inputs(case)[3], figdir))

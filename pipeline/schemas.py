@@ -7,6 +7,7 @@ unit mistakes (mm typed for m, MPa for Pa).
 from __future__ import annotations
 
 from .config import Field, ListOf
+from .friction import friction_schema
 
 L = dict(kind=float, unit="m")
 
@@ -127,9 +128,7 @@ CASE = {
         "normal": Field(str, choices=["table", "norm"], default="table",
                         doc="normal contact from a NORM table over the approach, or NORM every step"),
     },
-    "friction": {
-        "mu": Field(float, min=0.0, max=1.0, min_inclusive=False, doc="Coulomb friction coefficient"),
-    },
+    "friction": friction_schema(),      # law (default "coulomb") and its parameters, or a preset
     "kinematics": {
         "gamma_y": Field(float, min=-0.2, max=0.2, doc="lateral creepage"),
         "gamma_x": Field(float, min=-0.2, max=0.2, default=0.0, doc="longitudinal creepage"),

@@ -77,6 +77,7 @@ class CaseContext:
     radiation: Any = None  # pipeline.radiate_stage.load_radiation_model(case), or None (not requested)
     radiation_note: str = ""
     extra: dict = field(default_factory=dict)
+    friction: Any = None   # the case's resolved friction (pipeline.friction.Friction); mu: its coefficient
 
     @property
     def flexible(self) -> np.ndarray:
@@ -87,11 +88,15 @@ class CaseContext:
         return f"({int(w['n'][i])},{int(w['m'][i])},{w['cls'][i]})"
 
 
-def load_context(case: str, *, radiation: bool = True, zeta_overrides: dict | None = None) -> CaseContext:
+def load_context(case: str, *, radiation: bool = True, zeta_overrides: dict | None = None,
+                 mus=()) -> CaseContext:
     """The CaseContext of ``case`` from build/cases/<case>/contact.npz, greens.npz and the wheel's
     modes.npz (ArtifactError when missing or stale, naming the make target).  ``zeta_overrides``
-    {mode: zeta} only for the radiation model (the simulation's damping is set per task)."""
+    {mode: zeta} only for the radiation model (the simulation's damping is set per task).  ``mus``:
+    the friction coefficients the study runs besides the case's own; their curves are built on the
+    case's contact (``pipeline.friction.with_curves``, cached by value)."""
     from ..contact_stage import contact_inputs
+    from ..friction import case_friction, with_curves
     from ..greens_stage import greens_inputs
 
     c, _, _, ccfg = contact_inputs(case)
@@ -99,6 +104,7 @@ def load_context(case: str, *, radiation: bool = True, zeta_overrides: dict | No
     cdir = paths.case_dir(case)
     con, cprov = artifacts.load_npz(cdir / "contact.npz", "contact", ccfg, make_target=f"contact CASE={case}")
     gr, gprov = artifacts.load_npz(cdir / "greens.npz", "greens", gcfg, make_target=f"greens CASE={case}")
+    con = with_curves(case, con, [float(m) for m in mus])
     if len(modes["f_hz"]) != len(gr["wheel_f"]) or not np.allclose(modes["f_hz"], gr["wheel_f"]):
         raise artifacts.ArtifactError(cdir / "greens.npz", f"its wheel modes are not those of "
                                       f"{paths.wheel_dir(c['wheel']) / 'modes.npz'}; run `make greens CASE={case}`")
@@ -114,6 +120,6 @@ def load_context(case: str, *, radiation: bool = True, zeta_overrides: dict | No
     return CaseContext(case=case, inputs=inputs, dy_wr=c["contact"]["dy_wr"], dt=c["time"]["dt"],
                        v=c["kinematics"]["speed"], preload=c["loading"]["preload"],
                        gamma_x=c["kinematics"]["gamma_x"], gamma_y=c["kinematics"]["gamma_y"],
-                       mu=c["friction"]["mu"], tangential=c["contact"]["model"], normal=c["contact"]["normal"],
+                       mu=case_friction(c, case).mu, friction=case_friction(c, case), tangential=c["contact"]["model"], normal=c["contact"]["normal"],
                        contact=con, wheel=wheel, rail_kernel=gr["rail_kernel"], radiation=model,
                        radiation_note=note)
