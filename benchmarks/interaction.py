@@ -80,17 +80,26 @@ FALLING_LABEL = "full model, falling law, gamma_x, gamma_y and spin (issue 26)"
 
 
 def falling_three_creepages(contact):
-    """The default contact with a falling law's global curve (exponential, mu 0.35 -> 0.25, s_ref =
-    0.5 m/s: ``solvers.contact.falling.scaled_curve``) and its spin lengths, and the three
-    creepages of the run: gamma_x = 0.002, gamma_y (the default), spin 0.5/m."""
-    from solvers.contact.falling import ExponentialLaw, scaled_curve
+    """The default contact with a falling law's global curve (Polach's, mu 0.35 -> 0.25, 1/B =
+    0.5 m/s: TANG's curve, ``solvers.contact.falling.tang_curve``, or the scaled Coulomb curve on
+    the analytic stand-in) and its spin lengths, and the three creepages of the run: gamma_x =
+    0.002, gamma_y (the default), spin 0.5/m."""
+    from solvers.contact.falling import scaled_curve, tang_curve
+    from solvers.contact.friction_laws import get_friction_law
+    from solvers.contact.norm import NormTable, table_pressure
     from solvers.interaction import static_approach
     from solvers.timeloop.driver import spin_length
 
-    law = ExponentialLaw(0.35, 0.25, 0.5)
-    s, m, d = scaled_curve(contact.s_nodes, contact.mu_nodes, contact.slopes, contact.mu, law)
-    L = spin_length(contact, static_approach(contact, 65e3), V) if contact.pressure_nodes is not None \
-        else np.array([0.0, 2.5e-3])
+    law = get_friction_law("polach", mu0=0.35, A=0.25 / 0.35, B=2.0)
+    if contact.pressure_nodes is not None:
+        app = static_approach(contact, 65e3)
+        p3 = table_pressure(NormTable(contact.xi3_nodes, contact.F3_nodes, contact.q_nodes, contact.pressure_nodes,
+                                      contact.pressure_nodes > 0), app)
+        s, m, d = tang_curve(p3, contact.dx, contact.dy, V, law)
+        L = spin_length(contact, app, V)
+    else:
+        s, m, d = scaled_curve(contact.s_nodes, contact.mu_nodes, contact.slopes, contact.mu, law)
+        L = np.array([0.0, 2.5e-3])
     return contact._replace(s_nodes=s, mu_nodes=m, slopes=d, spin_length=L), law, {"gamma_x": 0.002, "spin": 0.5}
 
 
@@ -99,9 +108,10 @@ def falling_section(runs: dict, law, extra: dict) -> str:
     t_f, r_f = runs[FALLING_LABEL]
     t_c = min(runs["full model"][0], runs["full model (Coulomb) again, after the falling-law run"][0])
     m = r_f.measures()
-    return (f"Falling friction and three creepages (issue 26): the default case with the global curve of an "
-            f"exponential law (mu_s = {law.mu_s}, mu_k = {law.mu_k}, s_ref = {law.s_ref} m/s; "
-            f"`solvers.contact.falling.scaled_curve`), gamma_x = {extra['gamma_x']}, gamma_y = {GAMMA_Y}, spin "
+    p = law.params
+    return (f"Falling friction and three creepages (issue 26): the default case with the global curve of "
+            f"Polach's law (mu0 = {p['mu0']:g}, A = {p['A']:.4f}, B = {p['B']:g} s/m; TANG with the local law, "
+            f"`solvers.contact.falling.tang_curve`), gamma_x = {extra['gamma_x']}, gamma_y = {GAMMA_Y}, spin "
             f"{extra['spin']}/m (spin lengths of the default contact, computed once outside the timing): "
             f"**{t_f:.3f} s** for 8 s of rolling, target < 0.5 s **{'met' if t_f < 0.5 else 'NOT met'}**; "
             f"{t_f / t_c:.2f}x the Coulomb loop's {t_c:.3f} s in the same run (the better of its two runs, before and "

@@ -93,11 +93,26 @@ def contact_model(arrays, law) -> ContactModel:
     n = int(arrays["rf_n"][i])
     keys = set(arrays.files) if hasattr(arrays, "files") else set(arrays)
     f = lambda k: np.ascontiguousarray(np.asarray(arrays[k], float)) if k in keys else None   # noqa: E731
-    return ContactModel(f("xi3_nodes"), f("q_nodes"), f("A1_nodes"), f("A2_nodes"),
-                        f("rf_s")[i, :n].copy(), f("rf_mu")[i, :n].copy(), f("rf_slope")[i, :n].copy(),
+    curve = f("rf_s")[i, :n].copy(), f("rf_mu")[i, :n].copy(), f("rf_slope")[i, :n].copy()
+    falling = _falling_law(law)
+    if falling is not None:                    # issue 26: a falling law's decay beyond the last node
+        from ..contact.falling import with_law_tail
+
+        curve = with_law_tail(*curve, falling)
+    return ContactModel(f("xi3_nodes"), f("q_nodes"), f("A1_nodes"), f("A2_nodes"), *curve,
                         float(mus[i]), f("F3_nodes"), f("pressure_nodes"), f("gap"),
                         float(arrays["dx"]) if "dx" in keys else None,
                         float(arrays["dy"]) if "dy" in keys else None)
+
+
+def _falling_law(law):
+    """The solver's law object (.mu, .dmu) of ``law`` when it is not Coulomb (a ``FrictionLaw``, or
+    anything with ``solver_law()`` giving one), else None."""
+    if hasattr(law, "solver_law"):
+        law = law.solver_law()
+    if isinstance(law, (int, float, np.floating, np.integer)) or getattr(law, "is_coulomb", True):
+        return None
+    return law if hasattr(law, "mu") and hasattr(law, "dmu") else None
 
 
 def refine_table(contact: ContactModel, xi3_nodes) -> ContactModel:

@@ -54,7 +54,7 @@ def case_rows(case: str):
     model = load_radiation_model(case)
     rows = []
     for label, law, extra in variants(float(con["contact_angle"])):
-        cf = cm if law is None else falling_contact(cm, law)
+        cf = cm if law is None else falling_contact(cm, law, c["kinematics"]["speed"], lm.F3)
         kw = dict(dt=lm.dt, v=c["kinematics"]["speed"], gamma_y=c["kinematics"]["gamma_y"], preload=lm.F3, **extra)
         res = simulate(wheel, lm.rail_kernel, cf, duration=c["time"]["duration"], **kw)
         m = res.measures()
@@ -96,8 +96,9 @@ def test_falling_friction_spin_and_traction_report():
 
 Test: `tests/interaction/test_falling_report.py` (validation suite). Per contact position (cases dy05, dy10,
 default, each at its own settings: mu = 0.35, gamma_y = -0.014, 50 km/h) one thing changed at a time: the
-friction law (the global curve of an exponential falling law, `solvers.contact.falling.scaled_curve` on the
-case's Coulomb curve: mild 0.35 -> 0.30 with s_ref = 1 m/s, moderate 0.35 -> 0.25 with s_ref = 0.5 m/s), spin
+friction law (Polach's falling law mu_s ((1 - A) exp(-s / s_ref) + A), mild 0.35 -> 0.30 with s_ref = 1 m/s,
+moderate 0.35 -> 0.25 with s_ref = 0.5 m/s; its global curve by TANG with the local law on the case's contact,
+`solvers.contact.falling.tang_curve`), spin
 of the contact's own angle (|phi| = sin|delta| / r0, r0 = {WHEEL_RADIUS} m, both signs; the point contact takes
 it as equivalent creepages from Kalker's linear theory on the contact's grid, `solvers.contact.spin`), or a
 longitudinal creepage gamma_x = +-{GAMMA_X} (traction or braking; the structures have no longitudinal

@@ -91,14 +91,16 @@ def test_shared_basis_roots_match_the_exact_roots(squealer_run):
 
 @pytest.fixture(scope="module")
 def falling_squealer():
-    """The reduced squealer with a falling law (exponential, 0.35 -> 0.25, s_ref = 0.5 m/s: slope
+    """The reduced squealer with a falling law (Polach's, 0.35 -> 0.25, 1/B = 0.5 m/s: slope
     -0.13 s/m at the operating slip) and with traction and spin (gamma_x = 0.004, spin 0.5/m with
     spin lengths (0, 2.5 mm), the default contact's size)."""
-    from solvers.contact.falling import ExponentialLaw, scaled_curve
+    from solvers.contact.falling import scaled_curve
+    from solvers.contact.friction_laws import get_friction_law
 
     wheel, g = reduced_squealer(DT)
     c = hertz_contact(0.35)
-    s, m, d = scaled_curve(c.s_nodes, c.mu_nodes, c.slopes, c.mu, ExponentialLaw(0.35, 0.25, 0.5))
+    s, m, d = scaled_curve(c.s_nodes, c.mu_nodes, c.slopes, c.mu,
+                           get_friction_law("polach", mu0=0.35, A=0.25 / 0.35, B=2.0))
     return wheel, g, c._replace(s_nodes=s, mu_nodes=m, slopes=d, spin_length=np.array([0.0, 2.5e-3]))
 
 

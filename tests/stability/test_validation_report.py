@@ -169,12 +169,24 @@ FALLING = (("mild", (0.35, 0.30, 1.0), {}, 1e-9), ("moderate", (0.35, 0.25, 0.5)
            ("moderate, gamma_x = 0.002, spin 0.5/m", (0.35, 0.25, 0.5), {"gamma_x": 0.002, "spin": 0.5}, 1e-13))
 
 
-def falling_contact(cm, law_params):
-    """The case's contact with the global curve of an exponential falling law (mu_s, mu_k, s_ref),
-    ``solvers.contact.falling.scaled_curve`` on the case's Coulomb curve (mu_s = the case's mu)."""
-    from solvers.contact.falling import ExponentialLaw, scaled_curve
+def falling_law(mu_s: float, mu_k: float, s_ref: float):
+    """Polach's law mu(s) = mu_s ((1 - A) exp(-s / s_ref) + A), A = mu_k / mu_s (the registry's)."""
+    from solvers.contact.friction_laws import get_friction_law
 
-    s, m, d = scaled_curve(cm.s_nodes, cm.mu_nodes, cm.slopes, cm.mu, ExponentialLaw(*law_params))
+    return get_friction_law("polach", mu0=mu_s, A=mu_k / mu_s, B=1.0 / s_ref)
+
+
+def falling_contact(cm, law_params, v: float, preload: float):
+    """The case's contact with the global curve of a falling law (mu_s, mu_k, s_ref): TANG with the
+    local law on the pressure at the static approach (``solvers.contact.falling.tang_curve``: the
+    peer's rf_curve and the law's tail), as the contact stage builds a law's curve."""
+    from solvers.contact.falling import tang_curve
+    from solvers.contact.norm import NormTable, table_pressure
+    from solvers.interaction import static_approach
+
+    table = NormTable(cm.xi3_nodes, cm.F3_nodes, cm.q_nodes, cm.pressure_nodes, cm.pressure_nodes > 0)
+    p3 = table_pressure(table, static_approach(cm, preload))
+    s, m, d = tang_curve(p3, cm.dx, cm.dy, v, falling_law(*law_params), cm.E, cm.nu)
     return cm._replace(s_nodes=s, mu_nodes=m, slopes=d)
 
 
@@ -194,7 +206,7 @@ def _run_falling(case):
     wheel = WheelModes(lm.f_r, lm.modal_mass, lm.zeta, lm.phi)
     out = []
     for name, law, extra, kick in FALLING:
-        cf = falling_contact(cm, law)
+        cf = falling_contact(cm, law, c["kinematics"]["speed"], lm.F3)
         kw = dict(dt=lm.dt, v=c["kinematics"]["speed"], gamma_y=c["kinematics"]["gamma_y"], preload=lm.F3, **extra)
         lmf = linearise(wheel, lm.rail_kernel, cf, **kw)
         lin = simulate(wheel, lm.rail_kernel, cf, duration=0.45, stop=None, final=0.45, kick=(kick, 0.0), **kw)
@@ -224,9 +236,10 @@ def test_screen_against_the_time_loop_with_a_falling_law():
     text = """## Stability screen against the time loop with a falling friction law (issue 26)
 
 Test: `tests/stability/test_validation_report.py::test_screen_against_the_time_loop_with_a_falling_law`
-(validation suite). As the Coulomb table above, with the global curve of an exponential falling law
-mu(s) = mu_k + (mu_s - mu_k) exp(-s / s_ref) (`solvers.contact.falling.scaled_curve`: the case's
-Coulomb curve times mu_law(s) / mu, exact in full slip), mild (mu_s = 0.35, mu_k = 0.30, s_ref = 1 m/s)
+(validation suite). As the Coulomb table above, with the global curve of a falling law,
+Polach's mu(s) = mu_s ((1 - A) exp(-s / s_ref) + A), A = mu_k / mu_s (`friction_laws`), computed by TANG with
+the local law on the case's contact (`solvers.contact.falling.tang_curve`: `rf_curve(..., law)` and the
+law's decay beyond the last node), mild (mu_s = 0.35, mu_k = 0.30, s_ref = 1 m/s)
 and moderate (0.35, 0.25, 0.5 m/s), the moderate one also with traction and spin (gamma_x = 0.002,
 spin 0.5/m: both tangential directions of the screen, spin as equivalent creepages). The falling slope at
 the operating slip (gamma_y v = 0.19 m/s) feeds energy in: many more axial modes grow, up to ten times
