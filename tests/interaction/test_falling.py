@@ -118,3 +118,10 @@ def test_tang_curve_and_the_scaled_approximation():
         assert abs(mt - ma) < 3e-3, (x, mt, ma)
         if x >= 0.12:
             assert da == pytest.approx(dt_, rel=0.05), (x, dt_, da)
+
+
+def test_kalker_loop_refuses_a_falling_curve(falling):
+    """Transient TANG is Coulomb only: the Kalker loop must not run a falling law's case as Coulomb."""
+    _, f = falling
+    with pytest.raises(ValueError, match="Coulomb friction only"):
+        simulate(None, None, f, dt=DT, v=V, gamma_y=GAMMA_Y, duration=0.001, tangential="kalker")
