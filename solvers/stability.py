@@ -1,8 +1,8 @@
 """Frequency-domain stability screen: the time loop linearised about steady rolling.
 
 The squeal time loop (``solvers.interaction``, SPEC 3.5, 4.1-4.4) is a discrete-time
-system.  About its steady rolling state (preload F3, rigid slip w2 = gamma_y v,
-gamma_x = 0, so F1 = 0 throughout) every part of it is linear in the deviations
+system.  About its steady rolling state (preload F3, rigid slip w2 = gamma_y v; first with
+gamma_x = 0, so F1 = 0 throughout, both directions below) every part of it is linear in the deviations
 but the friction curve and the NORM table, and those two are linearised:
 
 * structures, [4.13]-[4.15]: xi[n] = sum_{k>=1} (g^R_mov[k] + g^W[k]) dF[n-k], with
