@@ -94,6 +94,11 @@ def resolve_case(name: str) -> ResolvedCase:
     from .profiles import case_contact, profile_file
 
     c, pw, pr, geo = case_contact(name)
+    from .check import time_step_problem              # a time step the greens stage would refuse: one line
+
+    problem = time_step_problem(c, c["rail"])
+    if problem:
+        raise ConfigError(str(path), [("time.dt", c["time"]["dt"], problem)])
     RESOLVED[name] = RESOLVED.get(name, 0) + 1
     used = [profile_file(geo.config[k]) for k in ("wheel_name", "rail_name") if geo.config.get(k)]
     files = _stamp([path, paths.wheel_file(c["wheel"]), paths.rail_file(c["rail"]), *used])

@@ -115,34 +115,46 @@ def decay_time(g0, dt: float, tail: float = 0.05) -> float | None:
     return None
 
 
-def time_step_problem(c: dict, rail: str) -> str | None:
-    """What the greens stage would refuse about the case's time step, or None.  The rail's
-    Green's function on Kropp's grid (N_t = RAIL_NT samples) must have decayed by 60 dB at
-    N_t dt / 2 (pipeline.rail_kernel); how fast the rail's response decays is read from a moving
-    kernel of this rail already built (build/rails/<rail>/moving/, its fixed-point kernel, the
-    one nearest the case's contact point); without one there is nothing to measure and the greens
-    stage checks it."""
+def rail_decay_time(rail: str) -> tuple[float, float] | None:
+    """(decay time T (s), the time step it was measured at) of the rail's fixed-point Green's
+    function, from the moving kernels of this rail already built (build/rails/<rail>/moving/; the
+    longest over them), or None when there is none."""
     import json
 
-    from .greens_stage import RAIL_NT
-
-    dt = c["time"]["dt"]
     best = None
     for f in sorted((paths.rail_dir(rail) / "moving").glob("*.npz")):
         try:
             with np.load(f) as d:
                 cfg = json.loads(str(d["__provenance__"])).get("config", {})
                 g0, dt0 = np.asarray(d["rail_fixed_kernel"]), float(cfg["dt"])
-        except (OSError, KeyError, ValueError):
+        except (OSError, KeyError, ValueError, TypeError):
             continue
         T = decay_time(g0, dt0)
         if T is not None and (best is None or T > best[0]):
             best = (T, dt0)
-    if best is None:
-        return None
-    dt_min = 2.0 * best[0] / RAIL_NT
-    if dt >= dt_min:
-        return None
-    return (f"{dt_min:.3g} <= dt <= 0.0002: the rail's Green's function (Kropp's grid of N_t = {RAIL_NT} steps) must "
-            f"decay by {DECAY_DB:.0f} dB within N_t dt / 2 = {1e3 * RAIL_NT * dt / 2:.0f} ms, and the {rail} rail takes "
-            f"{1e3 * best[0]:.0f} ms (its moving kernel at dt = {1e6 * best[1]:.0f} us)")
+    return best
+
+
+def time_step_problem(c: dict, rail: str) -> str | None:
+    """What the greens stage would refuse about the case's time step, as the allowed range and
+    why, or None.  (1) The wheel's Green's function is fitted to the receptance up to the band of
+    the models, WHEEL_BAND_LIMIT = 6.5 kHz (solvers.band_fit), which must lie below the Nyquist
+    frequency 1 / (2 dt).  (2) The rail's Green's function on Kropp's grid (N_t = RAIL_NT steps)
+    must have decayed by 60 dB at N_t dt / 2 (pipeline.rail_kernel); how fast the rail's response
+    decays is measured on a moving kernel of this rail already built (``rail_decay_time``); without
+    one there is nothing to measure and the greens stage checks it."""
+    from .greens_stage import RAIL_NT, WHEEL_BAND_LIMIT
+
+    dt = c["time"]["dt"]
+    hi = 0.5 / WHEEL_BAND_LIMIT
+    decay = rail_decay_time(rail)
+    lo = 2.0 * decay[0] / RAIL_NT if decay else None
+    allowed = (f"{lo:.3g} <= dt < {hi:.3g}" if lo else f"dt < {hi:.3g}")
+    if dt >= hi:
+        return (f"{allowed}: the wheel's Green's function is fitted up to {WHEEL_BAND_LIMIT / 1e3:g} kHz (the band "
+                f"of the models), which must lie below the Nyquist frequency 1 / (2 dt) = {0.5 / dt / 1e3:.2f} kHz")
+    if lo and dt < lo:
+        return (f"{allowed}: the rail's Green's function (Kropp's grid of N_t = {RAIL_NT} steps) must decay by "
+                f"{DECAY_DB:.0f} dB within N_t dt / 2 = {1e3 * RAIL_NT * dt / 2:.0f} ms, and the {rail} rail takes "
+                f"{1e3 * decay[0]:.0f} ms (its moving kernel at dt = {1e6 * decay[1]:.0f} us)")
+    return None

@@ -47,6 +47,10 @@ def contact_inputs(case: str) -> tuple[dict, dict, dict, dict]:
     return c, pw, pr, cfg
 
 
+class ConformalContact(RuntimeError):
+    """The static patch outgrows the potential area the profiles allow (too conformal a contact)."""
+
+
 def static_contact(geo, E: float, nu: float, F_L: float, dx: float):
     """Potential area, gap and static NORM solution at the preload F_L:
     (x, y, gap, A, B, xi_static, static).  The area starts from the gap's own
@@ -89,7 +93,7 @@ def static_contact(geo, E: float, nu: float, F_L: float, dx: float):
         if (C[:, 0].any() and lo <= lo_max + DY) or (C[:, -1].any() and hi >= hi_max - DY):
             break
         a_half, lo, hi = GROW * a_half, max(GROW * lo, lo_max), min(GROW * hi, hi_max)
-    raise RuntimeError(f"at twice the static approach the contact patch reaches the edge of the potential area "
+    raise ConformalContact(f"at twice the static approach the contact patch reaches the edge of the potential area "
                        f"({1e3 * lo:+.1f} .. {1e3 * hi:+.1f} mm laterally: the wheel or rail profile ends there, or "
                        f"it is {MAX_TRIES} times enlarged); the profiles are too conformal here for this contact model")
 
@@ -146,7 +150,13 @@ def run_contact(case: str) -> dict:
         log.warning("note: case %s: %s", case, over_radial_note(c))
     t0 = time.perf_counter()
     cache = contact_curve_cache(case)
-    arrays = build_contact(c, pw, geo, curve=cache)
+    try:
+        arrays = build_contact(c, pw, geo, curve=cache)
+    except ConformalContact as e:                      # a contact of the case's input: one line, no traceback
+        from .config import ConfigError
+
+        raise ConfigError(str(paths.case_file(case)), [("contact.dy_wr", c["contact"]["dy_wr"], f"not a contact "
+                                                        f"this model can solve: {e}")]) from None
     out = paths.case_dir(case)
     plot_rf(arrays, out / "contact_rf.png", f"{case}: dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm")
     artifacts.save_npz(out / "contact.npz", "contact", cfg, **arrays)

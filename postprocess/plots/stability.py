@@ -23,7 +23,9 @@ def screen_figure(a: dict, case: str, c: dict):
     ax.set_xlabel("frequency (Hz)")
     ax.set_ylabel("growth rate sigma (1/s)")
     ax.set_ylim(max(-30.0, float(s.min()) - 1) if len(s) else -30, max(5.0, 1.15 * float(s.max())) if len(s) else 5)
-    ax.set_title(f"{case}: dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm, mu = {c['friction']['mu']}, "
+    fr = c["friction"]
+    fr_text = f"mu = {fr['mu']}" if fr.get("mu") is not None else f"friction {fr.get('preset') or fr.get('law')}"
+    ax.set_title(f"{case}: dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm, {fr_text}, "
                  f"gamma_y = {c['kinematics']['gamma_y']}")
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3, which="both")

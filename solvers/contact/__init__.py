@@ -9,6 +9,7 @@ grid (any gap: Hertzian or from real profiles) and SI units.
 """
 from .compliance import compliance_table, contact_compliance, table_compliance
 from .friction import RFCurve, mu_rf, rf_curve
+from .friction_laws import LAWS, PRESETS, FrictionLaw, get_friction_law, mu_of
 from .influence import boussinesq, cerruti, dense_matrix, normal_kernel, tangential_kernels
 from .norm import (NormalContact, NormTable, approach_for_load, norm, norm_table, table_force,
                    table_midpoint_error, table_pressure)
@@ -20,5 +21,6 @@ __all__ = [
     "table_midpoint_error",
     "TangentialContact", "tang_steady", "tang_transient", "rigid_slip",
     "RFCurve", "rf_curve", "mu_rf",
+    "FrictionLaw", "get_friction_law", "LAWS", "PRESETS", "mu_of",
     "contact_compliance", "compliance_table", "table_compliance",
 ]

@@ -17,7 +17,8 @@ does not contract (a steep falling branch), the update of the bounds is relaxed 
 OMGSLP; here halved whenever the change grows).  The friction memory of CONTACT (MEMDST) is
 not modelled: MEMDST = 0, the instantaneous law.
 
-Stops when the largest change of the bounds is below ``tol_mu`` times the largest bound.
+Stops when the largest change of the bounds is below ``TOL_MU`` times the largest bound (and the
+last Coulomb solve had tolerance ``tol``; earlier ones are inexact, a tenth of the last change).
 """
 from __future__ import annotations
 
@@ -48,7 +49,7 @@ def slip_speed(res: CoulombResult, dt: float) -> np.ndarray:
 
 
 def solve_falling(op: TangentialOperator, ix, iy, r, p3, law: FrictionLaw, dt, p, stick, *, speed=None,
-                  tol=1e-8, tol_mu=TOL_MU, warm=False, max_outer=MAX_OUTER) -> FallingResult:
+                  tol=1e-8, warm=False) -> FallingResult:
     """Steady TANG with the local coefficient mu(|s|) of `law` on the contact elements (ix,
     iy) of the operator's grid; r, p (N, 2), p3 (N,) [Pa], dt = dx / v [s]; `speed` (N,) the
     start's slip speeds [m/s] (None: zero, all at mu(0)); p, stick the start (as in
@@ -56,18 +57,20 @@ def solve_falling(op: TangentialOperator, ix, iy, r, p3, law: FrictionLaw, dt, p
     p3 = np.asarray(p3, dtype=float)
     sv = np.zeros(p3.shape) if speed is None else np.asarray(speed, dtype=float)
     g = law.mu(sv) * p3
-    omega, last = 1.0, np.inf
+    omega, last, level = 1.0, np.inf, float(g.max(initial=0.0))
     total_newton = total_krylov = 0
     res = None
     converged = False
-    for outer in range(1, max_outer + 1):
-        res = solve_coulomb(op, ix, iy, r, g, p, stick, tol=tol, warm=warm or outer > 1)
+    for outer in range(1, MAX_OUTER + 1):
+        # inexact inner solves while the bounds still move (a tenth of the last change), `tol` at the end
+        tol_k = min(1e-3, max(tol, 0.1 * last / max(level, 1e-300)))
+        res = solve_coulomb(op, ix, iy, r, g, p, stick, tol=tol_k, warm=warm or outer > 1)
         total_newton += res.newton
         total_krylov += res.krylov
         g_new = law.mu(slip_speed(res, dt)) * p3
         change = float(np.abs(g_new - g).max(initial=0.0))
         level = float(g.max(initial=0.0))
-        if change <= tol_mu * level and res.converged:
+        if change <= TOL_MU * level and res.converged and tol_k <= tol:
             converged = True
             break
         if change > last:           # not contracting: relax the bounds' update (CONTACT's OMGSLP)
@@ -77,3 +80,4 @@ def solve_falling(op: TangentialOperator, ix, iy, r, p3, law: FrictionLaw, dt, p
         p, stick = res.p, res.stick
     res = res._replace(newton=total_newton, krylov=total_krylov, converged=converged)
     return FallingResult(res, g, outer, converged)
+

@@ -98,3 +98,24 @@ def test_with_curves_adds_the_missing_values_only(static, tmp_path, monkeypatch)
         assert contact_model(out, mu).mu_nodes[-1] == pytest.approx(mu, rel=1e-4)
     assert len(list((tmp_path / "cases" / "x" / "friction").glob("*.npz"))) == 3
     assert with_curves("x", out, [0.05]) == out                   # nothing missing: nothing built
+
+
+def test_a_falling_law_curve_is_built_cached_and_selected_unflattened(static, tmp_path):
+    """A case with CONTACT's exponential falling law (preset contact_tractcurv): its curve is the
+    registry law's rf_curve (bit for bit), rises to a peak and falls, and contact_model hands the
+    time loop the falling branch as built (nothing makes it monotone)."""
+    from pipeline.friction import resolve_friction
+    from solvers.contact.friction_laws import preset
+
+    f = resolve_friction({"preset": "contact_tractcurv"}, "x.toml")
+    ref = rf_curve(static, D, D, V, preset("contact_tractcurv"), E, NU)
+    cache = CurveCache(tmp_path)
+    curve = cache(static, D, D, V, f, E, NU)
+    assert np.array_equal(curve["mu_rf"], ref.mu_rf) and np.array_equal(curve["s"], ref.s)
+    arrays = _contact(static, [Friction.coulomb(0.33), f], [rf_curve(static, D, D, V, 0.33, E, NU)._asdict(), curve])
+    cm = contact_model(arrays, f)
+    peak = int(np.argmax(cm.mu_nodes))
+    assert 0 < peak < len(cm.mu_nodes) - 1 and cm.mu_nodes[-1] < cm.mu_nodes[peak] - 0.02
+    assert cm.mu_nodes[peak] <= f.mu + 1e-9 and np.array_equal(cm.mu_nodes, ref.mu_rf)
+    assert contact_model(arrays, preset("contact_tractcurv")).mu_nodes[-1] == cm.mu_nodes[-1]   # the law itself
+    assert contact_model(arrays, 0.33).mu_nodes[-1] == pytest.approx(0.33, rel=1e-4)

@@ -1,0 +1,134 @@
+"""CONTACT (E.A.H. Vollebregt's open-source CONTACT, github.com/eve70a/CONTACT, commit d431cdb of
+2025-07-23, "$Revision: 2707$", built with gfortran outside this repository) as the peer of the
+project's contact solvers: its printed results with every input stated, and the project's
+numbers on the same inputs.  Used by test_falling_friction.py and test_two_patch.py.
+
+Creep curves (module 3, steady rolling T=3, prescribed normal force N=1, Hertzian geometry
+IPOTCN=-3): semi-axes AA = 8 mm, BB = 4 mm (CONTACT's curvatures A1 = 0.8464e-3, B1 = 2.406e-3
+/mm), FN = 82 kN, GG = 82000 MPa and POISS = 0.28 for both bodies, 44 x 44 elements over 1.1
+times the ellipse (dx = 0.4 mm, dy = 0.2 mm), CHI = 0, DQ = 0.4 mm, VELOC = 30000 mm/s.
+Friction: the falling laws below with MEMDST = 0 (no friction memory: the instantaneous law),
+MEM_S0 = 1 mm/s; G = 4 with INISLP = 1 (slip velocity from below), OMGSLP = 1, EPS = 1e-8,
+MAXIN = 1000; I = 0 (every case from scratch).  Creepages c = CREEP: lateral CETA = -c,
+longitudinal CKSI = +c, each without spin and with CPHI = 6.25e-4 rad/mm (0.625 /m).
+CONTACT's printed FX/FSTAT/FN, FY/FSTAT/FN, MZ [N mm] and the number of adhesion elements
+('final element division: A') per case.
+
+Two patches (module 3, normal problem only, N=1, IPOTCN=3, IBASE=2): 44 x 64 elements of
+0.5 x 0.5 mm centred on the origin (XC1 = -10.75, YC1 = -15.75 mm), undeformed distance
+h = p(y) + x^2 / (2 RM) with the profile p(y) given at the element centres, two lobes
+p(y) = min((y - yl)^2 / (2 rl), (y - yr)^2 / (2 rr) + dz); GG = 80769.23 MPa, POISS = 0.3
+(E = 210 GPa).  The patch forces are CONTACT's element pressures PN (its .mat output, 6
+digits) summed over y < 0 and y > 0 times dx dy.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from solvers.contact.friction_laws import get_friction_law
+from solvers.contact.norm import approach_for_load
+from solvers.contact.tang import tang_steady
+from tests.contact.cases import grid
+
+G28, NU28 = 82e9, 0.28
+E28 = 2 * G28 * (1 + NU28)
+FN = 82e3
+V = 30.0                                  # VELOC 30000 mm/s
+M = 44
+DX, DY = 2 * 1.1 * 8e-3 / M, 2 * 1.1 * 4e-3 / M
+SPIN = 0.625                              # CPHI 6.25e-4 rad/mm in 1/m
+CREEP = (0.0005, 0.001, 0.002, 0.003, 0.005, 0.01, 0.02, 0.04)
+SETS = (("lateral", 0, -1, 0.0), ("longitudinal", 1, 0, 0.0),
+        ("lateral + spin", 0, -1, SPIN), ("longitudinal + spin", 1, 0, SPIN))
+
+LAWS = {   # CONTACT L-digit: the law in the registry's names (CONTACT's own parameters)
+    "L4 exponential": ("exponential", dict(fkin=0.14, fexp1=0.19, sabsh1=1250.0)),
+    "L3 rational": ("rational", dict(fkin=0.2, frat1=0.1, sabsh1=200.0, frat2=0.05, sabsh2=500.0)),
+    "L2 linear": ("linear", dict(fkin=0.2, flin1=0.1, sabsh1=300.0)),
+}
+
+# CONTACT's printed (FX/FSTAT/FN, FY/FSTAT/FN, MZ [N mm], adhesion elements), SETS x CREEP in order
+CONTACT_CREEP = {
+    "L4 exponential": [
+        (0.0, 0.2282, -15250.0, 1118), (0.0, 0.4193, -22780.0, 964), (0.0, 0.6996, -22500.0, 670), (0.0, 0.8648, -12800.0, 402), (0.0, 0.9541, 432.5, 20), (0.0, 0.9126, 1154.0, 0), (0.0, 0.8378, 1125.0, 0), (0.0, 0.7207, 757.5, 0),
+        (-0.2376, 0.0, 0.0, 1116), (-0.4357, 0.0, 0.0, 948), (-0.7223, 0.0, 0.0, 632), (-0.8844, 0.0, 0.0, 354), (-0.9546, 0.0, 0.0, 0), (-0.9126, 0.0, 0.0, 0), (-0.8377, 0.0, 0.0, 0), (-0.7206, 0.0, 0.0, 0),
+        (0.0, -0.6128, -46550.0, 474), (0.0, -0.4366, -55610.0, 616), (0.0, -0.09864, -66230.0, 666), (0.0, 0.1923, -66240.0, 614), (0.0, 0.6107, -46560.0, 414), (0.0, 0.9019, -3654.0, 0), (0.0, 0.8366, 221.9, 0), (0.0, 0.7209, 841.0, 0),
+        (-0.154, -0.7414, -40020.0, 197), (-0.3025, -0.7203, -39280.0, 164), (-0.5588, -0.6303, -37390.0, 39), (-0.7225, -0.4897, -35680.0, 0), (-0.8517, -0.2754, -30030.0, 0), (-0.8872, -0.08693, -17740.0, 0), (-0.8317, -0.0215, -8500.0, 0), (-0.7193, -0.004676, -3609.0, 0),
+    ],
+    "L3 rational": [
+        (0.0, 0.2154, -15280.0, 1124), (0.0, 0.3949, -22610.0, 980), (0.0, 0.6551, -21480.0, 680), (0.0, 0.8032, -10920.0, 418), (0.0, 0.8699, 2945.0, 24), (0.0, 0.7931, 2161.0, 0), (0.0, 0.7026, 972.2, 0), (0.0, 0.6336, 223.2, 0),
+        (-0.2243, 0.0, 0.0, 1118), (-0.4107, 0.0, 0.0, 952), (-0.6771, 0.0, 0.0, 638), (-0.8226, 0.0, 0.0, 356), (-0.8703, 0.0, 0.0, 0), (-0.7929, 0.0, 0.0, 0), (-0.7024, 0.0, 0.0, 0), (-0.6336, 0.0, 0.0, 0),
+        (0.0, -0.5845, -46500.0, 544), (0.0, -0.416, -55560.0, 650), (0.0, -0.09781, -65510.0, 680), (0.0, 0.1729, -64550.0, 624), (0.0, 0.5539, -43110.0, 418), (0.0, 0.7893, -748.7, 0), (0.0, 0.7039, 340.1, 0), (0.0, 0.634, -273.7, 0),
+        (-0.1457, -0.7149, -39630.0, 294), (-0.286, -0.6947, -39000.0, 258), (-0.5261, -0.6077, -37600.0, 116), (-0.6732, -0.4664, -35940.0, 0), (-0.7734, -0.2506, -29210.0, 0), (-0.7702, -0.07232, -16240.0, 0), (-0.6975, -0.0163, -7557.0, 0), (-0.6326, -0.003661, -3511.0, 0),
+    ],
+    "L2 linear": [
+        (0.0, 0.2487, -14770.0, 1110), (0.0, 0.4517, -21090.0, 934), (0.0, 0.7337, -18050.0, 600), (0.0, 0.8796, -7302.0, 318), (0.0, 0.9169, 1899.0, 0), (0.0, 0.8338, 2320.0, 0), (0.0, 0.6775, 1012.0, 0), (0.0, 0.6667, -66.53, 0),
+        (-0.259, 0.0, 0.0, 1094), (-0.4692, 0.0, 0.0, 910), (-0.7565, 0.0, 0.0, 560), (-0.897, 0.0, 0.0, 260), (-0.917, 0.0, 0.0, 0), (-0.8339, 0.0, 0.0, 0), (-0.6768, 0.0, 0.0, 0), (-0.6667, 0.0, 0.0, 0),
+        (0.0, -0.642, -46340.0, 260), (0.0, -0.4699, -53600.0, 514), (0.0, -0.1153, -62520.0, 612), (0.0, 0.1873, -60670.0, 566), (0.0, 0.6058, -38160.0, 376), (0.0, 0.8227, 302.4, 0), (0.0, 0.6914, 880.3, 0), (0.0, 0.6664, -894.9, 0),
+        (-0.1567, -0.7331, -39680.0, 3), (-0.3069, -0.7063, -38510.0, 2), (-0.5603, -0.6011, -35390.0, 0), (-0.7132, -0.4543, -33180.0, 0), (-0.8193, -0.2442, -26850.0, 0), (-0.8091, -0.07066, -14530.0, 0), (-0.6742, -0.01361, -6200.0, 0), (-0.6656, -0.003399, -3258.0, 0),
+    ],
+}
+
+
+def hertz_contact():
+    """The creep cases' NORM solution (X, Y, pressures) on CONTACT's grid."""
+    X, Y = grid(M, M, DX, DY)
+    _, ns = approach_for_load(FN, 0.8464 * X**2 + 2.406 * Y**2, DX, DY, E28, NU28)
+    return X, Y, ns
+
+
+def creep_curves(name, contact=None):
+    """The project's steady TANG on the CONTACT cases of law `name`: array (32, 4) of (F1/(fstat FN),
+    F2/(fstat FN), Mz [N mm], stick elements), SETS x CREEP in CONTACT's order, each case from
+    scratch (CONTACT's I = 0, INISLP = 1)."""
+    X, Y, ns = contact or hertz_contact()
+    law = get_friction_law(LAWS[name][0], **LAWS[name][1])
+    scale = law.mu_static * ns.F3
+    out = []
+    for _, ix, iy, spin in SETS:
+        for c in CREEP:
+            sol = tang_steady(ns.p, DX, DY, V, law, gamma_x=c * ix, gamma_y=c * iy, spin=spin, E=E28, nu=NU28,
+                              full_output=False)
+            assert sol.converged
+            mz = float((X * sol.p2 - Y * sol.p1).sum() * DX * DY * 1e3)
+            out.append((sol.F1 / scale, sol.F2 / scale, mz, int(sol.stick.sum())))
+    return np.array(out)
+
+
+# ---------------------------------------------------------------------------------------------
+# two patches
+# ---------------------------------------------------------------------------------------------
+
+E30, NU30 = 210e9, 0.3
+PATCH_GRID = (44, 64, 0.5e-3)             # MX, MY, dx = dy [m]
+GEOMETRIES = {   # lobe centres yl, yr [mm], lateral radii rl, rr [mm], dz [mm] (right lobe lower), RM [mm]
+    "two tread lobes": dict(yl=-4.0, rl=50.0, yr=4.0, rr=80.0, dz=0.005, rm=390.0),
+    "tread + flange-like lobe": dict(yl=-5.0, rl=100.0, yr=5.0, rr=15.0, dz=0.010, rm=460.0),
+}
+# CONTACT: (geometry, FN [N]) -> (patch y < 0 [N], patch y > 0 [N], contact elements, approach [mm])
+CONTACT_TWO_PATCH = {
+    ("two tread lobes", 30e3): (16053.75, 13946.26, 148, 4.492e-2),
+    ("two tread lobes", 65e3): (33319.47, 31680.54, 256, 7.552e-2),
+    ("tread + flange-like lobe", 30e3): (20908.17, 9091.838, 152, 4.516e-2),
+    ("tread + flange-like lobe", 65e3): (43297.65, 21702.35, 246, 7.507e-2),
+}
+
+
+def two_lobe_gap(geometry):
+    """(X, Y, h) [m] of a two-lobe geometry on the patch grid: h = p(y) + x^2 / (2 RM)."""
+    nx, ny, d = PATCH_GRID
+    q = GEOMETRIES[geometry]
+    X, Y = grid(nx, ny, d, d)
+    ym = 1e3 * Y
+    p = np.minimum((ym - q["yl"]) ** 2 / (2 * q["rl"]), (ym - q["yr"]) ** 2 / (2 * q["rr"]) + q["dz"])
+    return X, Y, 1e-3 * p + X**2 / (2e-3 * q["rm"])
+
+
+def patch_forces(geometry, F3):
+    """The project's NORM at total load F3: (force on y < 0, force on y > 0, elements, approach [m])."""
+    X, Y, h = two_lobe_gap(geometry)
+    d = PATCH_GRID[2]
+    xi, ns = approach_for_load(F3, h, d, d, E30, NU30)
+    left = float(ns.p[Y < 0].sum() * d * d)
+    right = float(ns.p[Y > 0].sum() * d * d)
+    return left, right, int(ns.contact.sum()), float(xi)
