@@ -18,7 +18,9 @@ discrete s = w - v du/dx.  Coulomb's law per element:
     slip   |p_I| = mu p3_I,    p_I = -mu p3_I s_I / |s_I|   (traction opposes slip)
 
 so a positive creepage gives a negative force (F2 = -c^2 G C22 gamma_y in the
-linear range; full slip F = -mu F3 w / |w|).
+linear range; full slip F = -mu F3 w / |w|).  With a slip-speed dependent friction law
+(``friction_laws``) the bound is mu(|s_I|) p3_I at the element's own slip speed, mu(0) p3_I on
+stick: CONTACT's slip-velocity iteration around the solver below (``tang_falling``).
 
 Where the rigid slip is evaluated (spin).  The difference u_I - u_{I+dx} is the
 deformation the particle collects on its way from x_I + dx to x_I during the
@@ -119,12 +121,12 @@ def tang_transient(p3, dx, dy, v, mu, gamma_x=0.0, gamma_y=0.0, spin=0.0, *,
     one element ahead, u(x + dx, t - dt), and start the iteration (extrapolated from the
     last steps: the predictor that would have done best on the last step).  Call once per
     step.  ``options`` as in tang_steady (the time loop needs no displacements outside the
-    contact: full_output=False saves one FFT product per step)."""
+    contact: full_output=False saves one FFT product per step).  `mu` a Coulomb coefficient or a
+    ``FrictionLaw``: the local coefficient mu(|s|) at each element's slip speed of this step
+    (instantaneous, CONTACT's MEMDST = 0; ``tang_falling.transient_falling``)."""
     mu, law = _coefficient(mu)
-    if law is not None:
-        raise ValueError(f"tang_transient: friction law '{law.name}' depends on the slip speed; transient "
-                         "TANG takes Coulomb friction (a float or the 'coulomb' law), tang_steady takes any law")
-    return solve_rolling(p3, Rolling(dx, dy, v, mu, gamma_x, gamma_y, spin), False, state, TangOptions(**options))
+    return solve_rolling(p3, Rolling(dx, dy, v, mu, gamma_x, gamma_y, spin), False, state, TangOptions(**options),
+                         law)
 
 
 def _coefficient(mu):

@@ -1,6 +1,6 @@
-"""Slip-velocity dependent friction in steady TANG: the traction bound g = mu(|s|) p3 with
-the local slip speed |s| of each element (a falling or rising law of
-``solvers.contact.friction_laws``).
+"""Slip-velocity dependent friction in TANG: the traction bound g = mu(|s|) p3 with the local
+slip speed |s| of each element (a falling or rising law of ``solvers.contact.friction_laws``),
+steady (``solve_falling``) and per transient step (``transient_falling``).
 
 CONTACT's treatment (Vollebregt, User guide for CONTACT, sec. 'Slip velocity dependent
 friction' and the iteration parameters INISLP, OMGSLP; source m_stang.f90; Vollebregt 2014,
@@ -15,7 +15,9 @@ follows CONTACT's INISLP = 0 (the previous case's slip, here a warm start's; wit
 slip is approximated from below, all elements at mu(0), INISLP > 0).  Where the fixed-point map
 does not contract (a steep falling branch), the update of the bounds is relaxed (CONTACT's
 OMGSLP; here halved whenever the change grows).  The friction memory of CONTACT (MEMDST) is
-not modelled: MEMDST = 0, the instantaneous law.
+not modelled: MEMDST = 0, the instantaneous law (in transient rolling CONTACT's user guide warns
+that it changes mu abruptly where an element enters the slip area; steady state is unaffected, and
+transient rolling at constant creepage settles on the steady solution, tests/contact/test_tang_law.py).
 
 Stops when the largest change of the bounds is below ``TOL_MU`` times the largest bound (and the
 last Coulomb solve had tolerance ``tol``; earlier ones are inexact, a tenth of the last change).
@@ -81,3 +83,33 @@ def solve_falling(op: TangentialOperator, ix, iy, r, p3, law: FrictionLaw, dt, p
     res = res._replace(newton=total_newton, krylov=total_krylov, converged=converged)
     return FallingResult(res, g, outer, converged)
 
+
+
+def transient_falling(step, law: FrictionLaw, p3, ix, iy, speed=None):
+    """One transient step with the local coefficient mu(|s|) of `law`: the same outer iteration
+    around ``step(mu_el)`` (``tang_pcg.transient_step_law`` with the problem bound, mu_el (N,) the
+    elements' coefficients), starting from the previous step's slip speeds `speed` (N,) [m/s]
+    (None: zero).  Returns transient_step's tuple with the Newton and CG steps of all outer
+    iterations and ``converged`` of the last solve and the bounds."""
+    p3 = np.asarray(p3, dtype=float)
+    sv = np.zeros(p3.shape) if speed is None else np.asarray(speed, dtype=float)
+    g = law.mu(sv) * p3
+    omega, last = 1.0, np.inf
+    newton = krylov = 0
+    converged = False
+    for _ in range(MAX_OUTER):
+        out = step(g / p3)
+        newton, krylov = newton + out[8], krylov + out[9]
+        S, stick = out[1], out[2]
+        sv = np.hypot(S[0][ix, iy], S[1][ix, iy])
+        sv[stick[ix, iy]] = 0.0
+        g_new = law.mu(sv) * p3
+        change = float(np.abs(g_new - g).max(initial=0.0))
+        if change <= TOL_MU * float(g.max(initial=0.0)):
+            converged = bool(out[10])
+            break
+        if change > last:
+            omega = max(0.5 * omega, 1.0 / 64.0)
+        last = change
+        g = g + omega * (g_new - g)
+    return out[:8] + (newton, krylov, converged) + out[11:]

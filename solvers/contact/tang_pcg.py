@@ -175,13 +175,22 @@ def coulomb_transient(ix, iy, r, g, p, stick, u_start, warm, tol, max_iter, bufs
 @numba.njit(cache=True)
 def transient_step(p3, ix, iy, win, kin, mu, ahead, P_old, stick_old, slip_old, pred, U_old, hist_d, hist_n,
                    tol, max_iter, bufs, hat, symbol, inv, a0, scale):
+    """One transient step with Coulomb friction mu (``transient_step_law`` without coefficients)."""
+    return transient_step_law(p3, ix, iy, win, kin, mu, np.empty(0), ahead, P_old, stick_old, slip_old, pred, U_old,
+                              hist_d, hist_n, tol, max_iter, bufs, hat, symbol, inv, a0, scale)
+
+
+@numba.njit(cache=True)
+def transient_step_law(p3, ix, iy, win, kin, mu, mu_el, ahead, P_old, stick_old, slip_old, pred, U_old, hist_d,
+                       hist_n, tol, max_iter, bufs, hat, symbol, inv, a0, scale):
     """One transient step of ``tang_rolling.solve_rolling`` after its window is chosen, compiled:
     the rigid slip and transport term (ahead (2, nx, ny), or no rows: first step), the start from
     the previous solution P_old (no rows: traction-free) with its sets and the predicted change
     pred (2, 2, nx, ny) (no rows: none), the Coulomb solve on the window win = (i0, i1, j0, j1)
     with the operator's arrays, the solution on the grid and the predictor's differences after
     the step (hist_d with rows: the previous step's, hist_n valid; ``tang_steps.differences``).
-    kin = (dx, dy, v, dt, gamma_x, gamma_y, spin, w_offset).  Returns (P, S (2, nx, ny), stick,
+    kin = (dx, dy, v, dt, gamma_x, gamma_y, spin, w_offset).  mu_el (N,): the elements' coefficients
+    of a slip-speed dependent law (``tang_falling``; no elements: Coulomb with mu).  Returns (P, S (2, nx, ny), stick,
     slip, U, ahead, f1, f2, Newton steps, CG steps, converged, d, n, order, prediction)."""
     nx, ny = p3.shape
     i0, i1, j0, j1 = win
@@ -189,8 +198,12 @@ def transient_step(p3, ix, iy, win, kin, mu, ahead, P_old, stick_old, slip_old, 
     r = np.empty((N, 2))
     rigid_and_transport(ix, iy, (nx, ny), kin, ahead, r)
     g = np.empty(N)
-    for k in range(N):
-        g[k] = mu * p3[ix[k], iy[k]]
+    if mu_el.shape[0] == N and N > 0:
+        for k in range(N):
+            g[k] = mu_el[k] * p3[ix[k], iy[k]]
+    else:
+        for k in range(N):
+            g[k] = mu * p3[ix[k], iy[k]]
     p = np.zeros((N, 2))
     stick = np.ones(N, np.bool_)
     warm = P_old.shape[1] > 0

@@ -7,10 +7,10 @@ import warnings
 
 import numpy as np
 
-from .tang_falling import solve_falling
+from .tang_falling import solve_falling, transient_falling
 from .tang_newton import solve_coulomb
 from .tang_operator import tangential_operator
-from .tang_pcg import transient_step
+from .tang_pcg import transient_step, transient_step_law
 from .tang_state import ORDER, History, Rolling, TangentialContact, TangOptions
 from .tang_steps import (NO_WINDOW, contact_elements, inside, on_grid, rigid_and_transport, start_values,
                          window_fields, working_window)
@@ -29,8 +29,8 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
                   opts: TangOptions, law=None) -> TangentialContact:
     """Common driver of tang_steady / tang_transient: the problem of pressures p3 (nx, ny) [Pa]
     rolling as ``roll`` (steady or one transient step from ``warm``) on the contact's window.
-    `law`: a slip-speed dependent FrictionLaw (steady only; roll.mu is then its mu(0)), None:
-    Coulomb with roll.mu."""
+    `law`: a slip-speed dependent FrictionLaw (roll.mu is then its mu(0)), None: Coulomb with
+    roll.mu."""
     dx, dy, v, mu, gamma_x, gamma_y, spin = roll
     E, nu, tol, w_offset, full_output = opts
     p3 = np.asarray(p3, dtype=float)
@@ -73,11 +73,17 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
             hist_d, hist_n = _NEW_HISTORY, 0
         else:
             hist_d, hist_n = _NO_HISTORY, 0
-        P, S, st, sl, U, ahead, f1, f2, newton, krylov, converged, d, n, order, pred = transient_step(
-            p3, ix, iy, win, kin, mu, ahead, _EMPTY if P_old is None else P_old,
-            _NO_SET if P_old is None else warm.stick, _NO_SET if P_old is None else warm.slip,
-            h.pred if predict else _NO_PREDICTION, U_old, hist_d, hist_n, tol, MAX_ITER, op.buffers.arrays, op.hat,
-            op.symbol, op.inv, op.a0, op.scale)
+        rest = (ahead, _EMPTY if P_old is None else P_old,
+                _NO_SET if P_old is None else warm.stick, _NO_SET if P_old is None else warm.slip,
+                h.pred if predict else _NO_PREDICTION, U_old, hist_d, hist_n, tol, MAX_ITER, op.buffers.arrays, op.hat,
+                op.symbol, op.inv, op.a0, op.scale)
+        if law is None:
+            out = transient_step(p3, ix, iy, win, kin, mu, *rest)
+        else:                                  # the previous step's slip speeds start the iteration
+            speed = None if P_old is None else np.hypot(warm.s1[ix, iy], warm.s2[ix, iy])
+            out = transient_falling(lambda mu_el: transient_step_law(p3, ix, iy, win, kin, mu, mu_el, *rest), law,
+                                    p3[ix, iy], ix, iy, speed)
+        P, S, st, sl, U, ahead, f1, f2, newton, krylov, converged, d, n, order, pred = out
     if not converged:
         warnings.warn("TANG: stick/slip sets not converged", RuntimeWarning)
     valid = win

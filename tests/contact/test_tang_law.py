@@ -59,10 +59,29 @@ def test_coulomb_law_is_todays_path_bit_for_bit(contact):
     assert np.array_equal(ca.mu_rf, cb.mu_rf) and np.array_equal(ca.slope, cb.slope) and ca.law == law
 
 
-def test_transient_refuses_a_slip_dependent_law(contact):
+@pytest.mark.parametrize("gammas", [(0.0, -2e-3, 0.0), (1e-3, -3e-3, 0.5)])
+def test_transient_rolling_settles_on_the_steady_solution(contact, gammas):
+    # transient TANG (CG, the bounds iterated per step) at constant creepage rolls into the steady
+    # state that the steady solver (GMRES) finds: a second method for the same fixed point
     law = get_friction_law("polach", mu0=0.5, A=0.4, B=0.6)
-    with pytest.raises(ValueError, match="transient TANG takes Coulomb friction"):
-        tang_transient(contact.p, DXY, DXY, V, law, gamma_y=-1e-3)
+    gx, gy, sp = gammas
+    steady = tang_steady(contact.p, DXY, DXY, V, law, gamma_x=gx, gamma_y=gy, spin=sp)
+    st = None
+    for _ in range(100):
+        st = tang_transient(contact.p, DXY, DXY, V, law, gamma_x=gx, gamma_y=gy, spin=sp, state=st)
+    assert st.converged
+    scale = np.abs(np.hypot(steady.p1, steady.p2)).max()
+    assert np.abs(st.p1 - steady.p1).max() < 1e-6 * scale and np.abs(st.p2 - steady.p2).max() < 1e-6 * scale
+    assert np.array_equal(st.stick, steady.stick)
+
+
+def test_transient_coulomb_law_is_todays_path(contact):
+    law = get_friction_law("coulomb", mu=0.3)
+    a = b = None
+    for k in range(5):
+        a = tang_transient(contact.p, DXY, DXY, V, law, gamma_y=-2e-3 * (1 + 0.1 * k), state=a)
+        b = tang_transient(contact.p, DXY, DXY, V, 0.3, gamma_y=-2e-3 * (1 + 0.1 * k), state=b)
+    assert np.array_equal(a.p1, b.p1) and np.array_equal(a.p2, b.p2)
 
 
 def test_falling_curve_rises_to_a_peak_and_falls(contact):
