@@ -138,9 +138,10 @@ def simulate(wheel: WheelModes | None, rail_kernel: np.ndarray | None, contact: 
     or its fields as keywords (``overrides``, applied on top of ``settings`` when both are given;
     dt, v and gamma_y are required)."""
     s = RunSettings(**overrides) if settings is None else dataclasses.replace(settings, **overrides)
-    if s.tangential == "kalker" and (np.isinf(contact.s_nodes[-1]) or np.any(np.diff(contact.mu_nodes) < 0)):
-        raise ValueError("Kalker's transient TANG takes Coulomb friction only (tang_transient); a falling friction "
-                         "law runs with the point contact (tangential='point')")
+    if s.tangential == "kalker" and contact.law is None and (np.isinf(contact.s_nodes[-1])
+                                                             or np.any(np.diff(contact.mu_nodes) < 0)):
+        raise ValueError("Kalker's TANG needs the friction law of a falling curve (ContactModel.law); without it "
+                         "it would run Coulomb friction")
     store_every = max(1, int(s.store_every))
     p, kick = loop_params(contact, s)
     n_final = min(p.n_steps, int(round(s.final / s.dt))) if s.final else 0

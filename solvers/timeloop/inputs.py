@@ -39,7 +39,8 @@ class ContactModel(NamedTuple):
     For the reference drivers: F3_nodes and pressure_nodes (the table's pressure fields, for
     Kalker's TANG), gap, dx, dy, E, nu (per-step NORM, TANG).  spin_length (2,) [m]: spin's
     equivalent creepages per 1/m (``solvers.contact.spin``; None: computed from the pressure at
-    the static approach when a run has spin)."""
+    the static approach when a run has spin); law: the friction law of a non-Coulomb curve, for
+    Kalker's TANG in the reference loop (None: Coulomb with mu)."""
     xi3_nodes: np.ndarray
     q_nodes: np.ndarray
     A1_nodes: np.ndarray
@@ -56,6 +57,7 @@ class ContactModel(NamedTuple):
     E: float = 210e9
     nu: float = 0.3
     spin_length: np.ndarray | None = None
+    law: object | None = None      # the friction law for Kalker's TANG (a FrictionLaw; None: Coulomb mu)
 
 
 def curve_label(law) -> str:
@@ -94,18 +96,18 @@ def contact_model(arrays, law) -> ContactModel:
     keys = set(arrays.files) if hasattr(arrays, "files") else set(arrays)
     f = lambda k: np.ascontiguousarray(np.asarray(arrays[k], float)) if k in keys else None   # noqa: E731
     curve = f("rf_s")[i, :n].copy(), f("rf_mu")[i, :n].copy(), f("rf_slope")[i, :n].copy()
-    falling = _falling_law(law)
-    if falling is not None:                    # issue 26: a falling law's decay beyond the last node
+    solver_law = _solver_law(law)
+    if solver_law is not None:                 # issue 26: a falling law's decay beyond the last node
         from ..contact.falling import with_law_tail
 
-        curve = with_law_tail(*curve, falling)
+        curve = with_law_tail(*curve, solver_law)
     return ContactModel(f("xi3_nodes"), f("q_nodes"), f("A1_nodes"), f("A2_nodes"), *curve,
                         float(mus[i]), f("F3_nodes"), f("pressure_nodes"), f("gap"),
                         float(arrays["dx"]) if "dx" in keys else None,
-                        float(arrays["dy"]) if "dy" in keys else None)
+                        float(arrays["dy"]) if "dy" in keys else None, law=solver_law)
 
 
-def _falling_law(law):
+def _solver_law(law):
     """The solver's law object (.mu, .dmu) of ``law`` when it is not Coulomb (a ``FrictionLaw``, or
     anything with ``solver_law()`` giving one), else None."""
     if hasattr(law, "solver_law"):

@@ -47,9 +47,10 @@ def run_reference(filt, rc, p: LoopParams, c: ContactModel, rec: Record, win: Wi
     itop = int(np.argmax(c.mu_nodes))                     # full slip from the curve's peak on
     mu_top, s_top = c.mu_nodes[itop], c.s_nodes[itop]
     tang_state = None
+    friction = c.mu if c.law is None else c.law          # Kalker's TANG: Coulomb mu or the local law
     if tangential == "kalker" and start == "steady":
         p0 = table_pressure(table, xi3_static) if normal == "table" else norm(c.gap, xi3_static, c.dx, c.dy, E, nu).p
-        tang_state = tang_steady(p0, c.dx, c.dy, v, c.mu, gamma_x=gx[0], gamma_y=gy[0], spin=spin[0], E=E, nu=nu,
+        tang_state = tang_steady(p0, c.dx, c.dy, v, friction, gamma_x=gx[0], gamma_y=gy[0], spin=spin[0], E=E, nu=nu,
                                  full_output=False, tol=KALKER_TOL)
         F_ref = np.array([tang_state.F1, tang_state.F2, F_ref[2]])
         p = p._replace(F_ref=F_ref)
@@ -60,7 +61,7 @@ def run_reference(filt, rc, p: LoopParams, c: ContactModel, rec: Record, win: Wi
     nsol = None
     row = np.zeros(8)
     iw = jw = reason = done = 0
-    compiled = tangential == "kalker" and normal == "table"
+    compiled = tangential == "kalker" and normal == "table" and c.law is None   # (a law: TANG's Python step)
     n = 0
     while n < n_steps:
         if compiled and tang_state is not None and tang_state.history is not None \
@@ -109,7 +110,7 @@ def run_reference(filt, rc, p: LoopParams, c: ContactModel, rec: Record, win: Wi
             else:
                 if p3 is None:
                     p3 = table_pressure(table, app)
-                tang_state = tang_transient(p3, c.dx, c.dy, v, c.mu, gamma_x=gxn, gamma_y=gyn + dxi2 / v,
+                tang_state = tang_transient(p3, c.dx, c.dy, v, friction, gamma_x=gxn, gamma_y=gyn + dxi2 / v,
                                             spin=spn, E=E, nu=nu, state=tang_state, full_output=False, tol=KALKER_TOL)
                 F1, F2 = tang_state.F1, tang_state.F2
                 s1, s2, state = slip_summary(p3, tang_state.s1, tang_state.s2, tang_state.stick)

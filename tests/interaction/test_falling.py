@@ -120,8 +120,30 @@ def test_tang_curve_and_the_scaled_approximation():
             assert da == pytest.approx(dt_, rel=0.05), (x, dt_, da)
 
 
-def test_kalker_loop_refuses_a_falling_curve(falling):
-    """Transient TANG is Coulomb only: the Kalker loop must not run a falling law's case as Coulomb."""
+def test_kalker_loop_needs_the_law_of_a_falling_curve(falling):
+    """Without its law a falling curve would run Coulomb friction in Kalker's TANG: refused."""
     _, f = falling
-    with pytest.raises(ValueError, match="Coulomb friction only"):
+    with pytest.raises(ValueError, match="friction law of a falling curve"):
         simulate(None, None, f, dt=DT, v=V, gamma_y=GAMMA_Y, duration=0.001, tangential="kalker")
+
+
+def test_kalker_loop_with_a_falling_law_starts_in_steady_state():
+    """Kalker's loop with the law (ContactModel.law, as contact_model sets it): transient TANG with
+    the local falling law, started from steady TANG with the law, stays there (no structures, no
+    kick), with traction and spin."""
+    if not CONTACT.exists():
+        pytest.skip("needs build/cases/default/contact.npz (make contact)")
+    from solvers.contact.norm import NormTable, table_pressure
+    from solvers.contact.tang import tang_steady
+
+    c = default_contact(0.35)
+    app = static_approach(c, PRELOAD)
+    p3 = table_pressure(NormTable(c.xi3_nodes, c.F3_nodes, c.q_nodes, c.pressure_nodes, c.pressure_nodes > 0), app)
+    f = c._replace(law=LAW)
+    kw = dict(gamma_x=0.002, gamma_y=GAMMA_Y, spin=0.5)
+    r = simulate(None, None, f, dt=DT, v=V, preload=PRELOAD, duration=20 * DT, stop=None, kick=0.0,
+                 tangential="kalker", **kw)
+    sol = tang_steady(p3, c.dx, c.dy, V, LAW, full_output=False, **kw)
+    coul = tang_steady(p3, c.dx, c.dy, V, 0.35, full_output=False, **kw)
+    assert np.abs(r.F[:, 1] - sol.F2).max() < 2e-3 * PRELOAD and np.abs(r.F[:, 0] - sol.F1).max() < 2e-3 * PRELOAD
+    assert abs(sol.F2 - coul.F2) > 0.02 * PRELOAD          # the law acts (Coulomb's force is 0.35 F3)
