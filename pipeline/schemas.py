@@ -135,8 +135,8 @@ CASE = {
         "speed": Field(float, unit="m/s", min=0.5, max=60.0, doc="rolling speed v"),
         # issue 26 (point contact): spin beside the creepages
         "spin": Field(float, unit="1/m", min=-20.0, max=20.0, default=0.0,
-                      doc="spin creepage phi (rigid slip w = (gamma_x - phi y, gamma_y + phi x) v; ~ -sin(contact "
-                          "angle) / wheel radius); the point contact takes it as equivalent creepages from "
+                      doc="spin creepage phi (rigid slip w = (gamma_x - phi y, gamma_y + phi x) v; |phi| ~ sin|contact "
+                          "angle| / rolling radius); the point contact takes it as equivalent creepages from "
                           "Kalker's linear theory (solvers.contact.spin), Kalker's TANG as it is"),
     },
     "loading": {
