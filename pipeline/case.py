@@ -102,7 +102,9 @@ def resolve_case(name: str) -> ResolvedCase:
     RESOLVED[name] = RESOLVED.get(name, 0) + 1
     used = [profile_file(geo.config[k]) for k in ("wheel_name", "rail_name") if geo.config.get(k)]
     files = _stamp([path, paths.wheel_file(c["wheel"]), paths.rail_file(c["rail"]), *used])
-    config = {"case": {k: c[k] for k in ("contact", "kinematics", "loading", "time")},
+    case_cfg = {k: c[k] for k in ("contact", "kinematics", "loading", "time")}
+    case_cfg["kinematics"] = {k: v for k, v in c["kinematics"].items() if k != "spin"}   # issue 26: not a contact input
+    config = {"case": case_cfg,
               "wheel": {k: pw[k] for k in ("tyre", "flange", "material")}, "rail": pr,
               "running_surfaces": geo.config}
     rc = ResolvedCase(name, c, pw, pr, geo, resolve_friction(c, name), config, files)

@@ -40,6 +40,7 @@ def run_simulate(case: str) -> dict:
     cm = contact_model(con, case_friction(c, case))
     res = simulate(wheel, gr["rail_kernel"], cm, dt=c["time"]["dt"], v=c["kinematics"]["speed"],
                    gamma_y=c["kinematics"]["gamma_y"], gamma_x=c["kinematics"]["gamma_x"],
+                   spin=c["kinematics"].get("spin", 0.0),
                    preload=c["loading"]["preload"], duration=c["time"]["duration"],
                    tangential=c["contact"]["model"], normal=c["contact"]["normal"], store_every=10)
     m = res.measures()

@@ -77,16 +77,29 @@ and sigma = |s| is the root in (0, |b|] of the scalar equation
     H(sigma) = 1/sqrt(sum_tau b_tau^2 / D_tau(sigma)^2) - 1 = 0,
     D_tau(sigma) = sigma + k_tau mu_RF(sigma) sigma/sqrt(sigma^2 + eps^2).
 
-D_tau is strictly increasing (mu_RF is non-decreasing), so H rises strictly
+D_tau is strictly increasing for a non-decreasing mu_RF (Coulomb), so H rises strictly
 from -1 (sigma -> 0) to >= 0 (sigma = |b|): a unique root, bracketed, found by
 Newton's method safeguarded by bisection (warm-started with the previous
-step's sigma; 2-5 iterations).  For c_1 = c_2 H is (sigma + k mu_RF(sigma))/|b|
+step's sigma; 2-5 iterations).  A falling law's curve (issue 26, ``solvers.contact.falling``)
+keeps D_tau increasing while its slope stays above -1/k_tau = -dt/(A_tau F3) (about -0.45 s/m
+for the default contact at dt = 36 us; the falling laws of the validation reach -0.16 s/m); H
+still runs from -1 to >= 0, so a root is always bracketed, and where a steeper slope allows
+several, the safeguarded Newton started from the last step's sigma follows the branch of the
+last step.  For c_1 = c_2 H is (sigma + k mu_RF(sigma))/|b|
 - 1, Newton on a monotone, nearly linear function.  The direction s_tau/s needs
 no regularisation for the regularised friction curves: mu_RF(0) = 0 with a
 finite slope, so F = -F3 (mu_RF(s)/s) s is smooth through s = 0 (eps = 0, the
 default for such curves); for a curve with mu(0) > 0 (pure Coulomb) the
 direction is s_tau/sqrt(s^2 + eps^2) with eps = 1e-9 m/s, a viscous
 regularisation below eps.  |b| = 0 gives s = 0 and F = 0 exactly (no NaN).
+
+Traction and spin (issue 26): gamma_x enters the rigid slip w1 above; spin phi [1/m] enters the
+point contact as equivalent creepages (gamma_x, gamma_y) + L phi from Kalker's linear theory on
+the contact's grid (``solvers.contact.spin``; ``simulate(.., spin=)``), Kalker's TANG as the
+rigid slip field phi (-y, x) v.  The structures have no longitudinal direction (the wheel's
+circumferential and torsional motion and the rail's longitudinal receptance are not modelled):
+in direction 1 only the contact's compliance A1 deforms, so F1 changes the slip direction and
+shares the friction limit with F2 but moves no structure.
 
 Reference state and start (SPEC 3.5 "start from static equilibrium")
 ---------------------------------------------------------------------

@@ -14,8 +14,10 @@ up to the ramp's end (|gamma_y| = 0.05).  Solved in order of increasing
 creepage, each solve warm-started from the previous one (TANG's FFT-based Newton-Krylov
 solver: a whole curve on the ~350-element wheel/rail contact takes ~0.1-0.2 s).
 
-The curve is stored as arrays (s, mu_RF, slopes) of a monotone piecewise-cubic
-Hermite interpolant (Fritsch-Carlson), evaluated by the njit function mu_rf().
+The curve is stored as arrays (s, mu_RF, slopes) of a shape-preserving piecewise-cubic
+Hermite interpolant (Fritsch-Carlson: monotone between the nodes, flat at a node where the data
+turn), evaluated by the njit function mu_rf().  A Coulomb curve is constant beyond its last
+node (the full-slip plateau).
 
 Any friction law (``solvers.contact.friction_laws``): with a slip-speed dependent law TANG
 bounds each element's traction by mu(|s_local|) p3 (``tang_falling``), and the global curve
@@ -24,9 +26,16 @@ the static coefficient mu(0) (the peak lies before full slip), then ``n_fall`` g
 nodes up to the ramp's end, no monotone guard, and shape-preserving (Fritsch-Carlson)
 slopes, with the falling branch's own slope at the last node.  A float or the 'coulomb'
 law gives exactly the Coulomb curve above.
+
+Beyond the last node a falling curve continues with the law's decay: the time loop's arrays of
+such a curve (``solvers.contact.falling.with_law_tail``) end with a node at s = +inf holding the
+asymptote mu_inf, and beyond the last finite node s_n ``mu_and_slope`` evaluates the exponential
+tail mu_inf + (mu_n - mu_inf) exp(-(s - s_n) / s_c), s_c = (mu_n - mu_inf) / |mu'_n|: value and
+slope continuous there.
 """
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numba
@@ -71,9 +80,9 @@ def creepage_nodes(gamma_sat, n_bend=18, n_plateau=5, gamma_end=GAMMA_END):
 
 
 def monotone_slopes(x, y, end_slope=0.0):
-    """Fritsch-Carlson slopes of the monotone cubic Hermite interpolant (PCHIP; shape-preserving:
-    monotone between the nodes, zero slope at a node that is a local extremum); `end_slope` at
-    the last node (None: the last interval's secant)."""
+    """Fritsch-Carlson slopes of the shape-preserving cubic Hermite interpolant (PCHIP: monotone
+    between the nodes, zero slope at a node that is a local extremum); ``end_slope`` at the last
+    node (0: a plateau follows; None: the last interval's secant; a falling curve's own slope)."""
     h = np.diff(x)
     delta = np.diff(y) / h
     d = np.zeros_like(y)
@@ -152,9 +161,10 @@ def _coulomb_curve(p3, dx, dy, v, mu, E, nu, gammas, n_bend, n_plateau, law) -> 
 
 @numba.njit(cache=True)
 def mu_and_slope(s, s_nodes, mu_nodes, slopes):
-    """mu_RF(|s|) and its derivative d mu_RF / d|s|: monotone cubic Hermite
-    between the nodes, constant (derivative 0) beyond the last node (the full
-    slip plateau)."""
+    """mu_RF(|s|) and its derivative d mu_RF / d|s|: shape-preserving cubic Hermite between the
+    nodes; beyond the last node constant (derivative 0: the full slip plateau), or, for a curve
+    whose last node is at s = +inf (a falling law, module notes), the exponential tail from the
+    last finite node down to mu_nodes[-1]."""
     s = abs(s)
     n = s_nodes.shape[0]
     if s >= s_nodes[n - 1]:
@@ -162,6 +172,13 @@ def mu_and_slope(s, s_nodes, mu_nodes, slopes):
     k = np.searchsorted(s_nodes, s, side="right") - 1
     if k < 0:
         k = 0
+    if k == n - 2 and s_nodes[n - 1] == np.inf:       # falling tail beyond the last finite node
+        a = mu_nodes[k] - mu_nodes[n - 1]
+        d = slopes[k]
+        if a <= 0.0 or d >= 0.0:
+            return mu_nodes[k], 0.0
+        e = math.exp(d * (s - s_nodes[k]) / a)
+        return mu_nodes[n - 1] + a * e, d * e
     h = s_nodes[k + 1] - s_nodes[k]
     t = (s - s_nodes[k]) / h
     t2, t3 = t * t, t * t * t

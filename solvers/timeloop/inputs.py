@@ -37,7 +37,10 @@ class ContactModel(NamedTuple):
     compliances over the approach [m/N]; s_nodes, mu_nodes, slopes: the regularised friction
     curve mu_RF(s) (monotone Hermite, ``friction.mu_rf``); mu: its Coulomb coefficient.
     For the reference drivers: F3_nodes and pressure_nodes (the table's pressure fields, for
-    Kalker's TANG), gap, dx, dy, E, nu (per-step NORM, TANG)."""
+    Kalker's TANG), gap, dx, dy, E, nu (per-step NORM, TANG).  spin_length (2,) [m]: spin's
+    equivalent creepages per 1/m (``solvers.contact.spin``; None: computed from the pressure at
+    the static approach when a run has spin); law: the friction law of a non-Coulomb curve, for
+    Kalker's TANG in the reference loop (None: Coulomb with mu)."""
     xi3_nodes: np.ndarray
     q_nodes: np.ndarray
     A1_nodes: np.ndarray
@@ -53,6 +56,8 @@ class ContactModel(NamedTuple):
     dy: float | None = None
     E: float = 210e9
     nu: float = 0.3
+    spin_length: np.ndarray | None = None
+    law: object | None = None      # the friction law for Kalker's TANG (a FrictionLaw; None: Coulomb mu)
 
 
 def curve_label(law) -> str:
@@ -90,11 +95,26 @@ def contact_model(arrays, law) -> ContactModel:
     n = int(arrays["rf_n"][i])
     keys = set(arrays.files) if hasattr(arrays, "files") else set(arrays)
     f = lambda k: np.ascontiguousarray(np.asarray(arrays[k], float)) if k in keys else None   # noqa: E731
-    return ContactModel(f("xi3_nodes"), f("q_nodes"), f("A1_nodes"), f("A2_nodes"),
-                        f("rf_s")[i, :n].copy(), f("rf_mu")[i, :n].copy(), f("rf_slope")[i, :n].copy(),
+    curve = f("rf_s")[i, :n].copy(), f("rf_mu")[i, :n].copy(), f("rf_slope")[i, :n].copy()
+    solver_law = _solver_law(law)
+    if solver_law is not None:                 # issue 26: a falling law's decay beyond the last node
+        from ..contact.falling import with_law_tail
+
+        curve = with_law_tail(*curve, solver_law)
+    return ContactModel(f("xi3_nodes"), f("q_nodes"), f("A1_nodes"), f("A2_nodes"), *curve,
                         float(mus[i]), f("F3_nodes"), f("pressure_nodes"), f("gap"),
                         float(arrays["dx"]) if "dx" in keys else None,
-                        float(arrays["dy"]) if "dy" in keys else None)
+                        float(arrays["dy"]) if "dy" in keys else None, law=solver_law)
+
+
+def _solver_law(law):
+    """The solver's law object (.mu, .dmu) of ``law`` when it is not Coulomb (a ``FrictionLaw``, or
+    anything with ``solver_law()`` giving one), else None."""
+    if hasattr(law, "solver_law"):
+        law = law.solver_law()
+    if isinstance(law, (int, float, np.floating, np.integer)) or getattr(law, "is_coulomb", True):
+        return None
+    return law if hasattr(law, "mu") and hasattr(law, "dmu") else None
 
 
 def refine_table(contact: ContactModel, xi3_nodes) -> ContactModel:
@@ -145,7 +165,8 @@ class LoopParams(NamedTuple):
     +1 or -1 (sign of the structural term of [4.30]); eps [m/s]: slip-direction regularisation;
     gx, gy: creepage per step (one value, or a history whose last value is held); F_ref (3,) [N]
     and u_ref (2,) [m]: the reference state; kick (2,) [N]: force added to the deviations during
-    the first step."""
+    the first step; spin (per step, like gx) [1/m] and spin_length (2,) [m]: the point contact
+    adds spin_length * spin to (gx, gy) (equivalent creepages), Kalker's TANG takes the spin."""
     n_steps: int
     dt: float
     v: float
@@ -157,6 +178,8 @@ class LoopParams(NamedTuple):
     F_ref: np.ndarray
     u_ref: np.ndarray
     kick: np.ndarray
+    spin: np.ndarray = np.zeros(1)
+    spin_length: np.ndarray = np.zeros(2)
 
 
 def static_approach(contact: ContactModel, preload: float) -> float:
