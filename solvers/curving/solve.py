@@ -147,7 +147,7 @@ def _newton(fun, z, tol=TOL, max_iter=40):
 
 
 def _start(veh, trk, lam0, n_ws, y_f):
-    y0 = 1e3 * min(veh.r0 * veh.rolling_circle / (lam0 * trk.radius), 0.8 * y_f)
+    y0 = 1e3 * min(veh.r0 * veh.rolling_circle / (lam0 * trk.radius), 0.8 * y_f, 0.02)
     per = [y0, 0.0, 0.0, 1.0, 1.0]
     return np.array(per * n_ws + ([y0, 0.0] if n_ws == 2 else []), float)
 
@@ -156,7 +156,7 @@ def _starts(veh, trk, lam0, n_ws, y_f):
     """Starting points: pure rolling without flange contact; for the bogie also the leading
     outer flange in contact with the frame at the chord position (a tight curve)."""
     yield _start(veh, trk, lam0, n_ws, y_f), [0] * n_ws
-    if n_ws == 2:
+    if n_ws == 2 and np.isfinite(y_f):
         a = veh.semi_wheelbase
         pb = 0.25 * y_f / a
         yield np.array([0.3, 1e3 * (a / trk.radius + pb), 0.0, 1.0, 1.0, 500 * y_f, 1e3 * (pb - a / trk.radius),
