@@ -16,7 +16,11 @@ CORE   ?= $(dir $(STAMP)).core-stamp
 RENDER ?= $(dir $(STAMP)).render-stamp
 # pipeline/deps.py uses the standard library only: it runs before the venv exists
 DEPS_PY := $(firstword $(wildcard $(PY)) /usr/bin/python3)
-CFILE := pipeline/cases/$(CASE).toml
+# a case is a file pipeline/cases/<CASE>.toml, or a curve's wheel CASE=<curve>/<wheel> (e.g. r150/a1i), whose
+# case file the curve stage writes to $(BUILD)/curves/<curve>/cases/<wheel>.toml (artifacts in $(BUILD)/cases/<curve>/<wheel>/)
+CURVE_OF = $(if $(findstring /,$(1)),$(firstword $(subst /, ,$(1))))
+CASE_FILE = $(if $(findstring /,$(1)),$(BUILD)/curves/$(call CURVE_OF,$(1))/cases/$(notdir $(1)).toml,pipeline/cases/$(1).toml)
+CFILE := $(call CASE_FILE,$(CASE))
 # the wheel and rail come from the case file (its keys `wheel`, `rail`): WHEEL=/RAIL= only for
 # the wheel and rail stages alone, and an error when they disagree with a case target's case
 CASE_INPUTS := $(shell $(DEPS_PY) pipeline/deps.py --case $(CFILE) 2>&1)

@@ -53,7 +53,9 @@ def main(argv=None) -> int:
     ap.add_argument("stage", choices=list(STAGES))
     ap.add_argument("--wheel", default="c20", help="wheel parameter file geometry/wheels/<name>.toml (default c20)")
     ap.add_argument("--rail", default="bv50", help="rail parameter file geometry/rails/<name>.toml (default bv50)")
-    ap.add_argument("--case", default="default", help="case file pipeline/cases/<name>.toml (default: default)")
+    ap.add_argument("--case", default="default", help="case file pipeline/cases/<name>.toml, or a curve's wheel "
+                    "<curve>/<wheel> (build/curves/<curve>/cases/<wheel>.toml, written by the curve stage) "
+                    "(default: default)")
     ap.add_argument("--workers", type=int, default=None,
                     help="processes for the harmonic solves, Dask workers of a study's local cluster (default: cores)")
     ap.add_argument("--study", default="map", help="study file pipeline/studies/<name>.toml (default: map)")
@@ -74,8 +76,15 @@ def main(argv=None) -> int:
     level = logging.WARNING if args.quiet else (logging.INFO if args.verbose < 2 else logging.DEBUG)
     logging.basicConfig(level=level, format="%(levelname)s %(name)s: %(message)s")
 
+    from . import paths
     from .artifacts import ArtifactError
     from .config import ConfigError
+
+    try:
+        paths.curve_wheel(args.case)  # a case file's name, or a curve's wheel <curve>/<wheel>
+    except ValueError as e:
+        print(f"error: --case: {e}", file=sys.stderr)
+        return 2
 
     if args.stage in NUMBA_STAGES:
         from .numba_setup import skip_special
@@ -84,7 +93,6 @@ def main(argv=None) -> int:
 
     try:
         if args.stage == "check":
-            from . import paths
             from .config import load
             from .schemas import CASE
             from .wheel_stage import load_wheel
@@ -94,8 +102,9 @@ def main(argv=None) -> int:
 
             load_rail_params(args.rail)
             case_path = paths.case_file(args.case)
-            if not case_path.exists():
-                raise ConfigError(str(case_path), detail=f"no such case; available: {paths.available(paths.cases())}")
+            why = paths.missing_case(args.case)
+            if why:
+                raise ConfigError(str(case_path), detail=why)
             load(case_path, CASE)
             print(f"wheel {args.wheel}, rail {args.rail} and case {args.case}: configuration OK")
         elif args.stage == "stability_map":

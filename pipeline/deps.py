@@ -7,7 +7,8 @@ stage can reach:
     DEPS_radiate := pipeline/radiate_stage.py pipeline/config.py ... postprocess/radiation.py
 
 ``python pipeline/deps.py --case pipeline/cases/<case>.toml`` prints the wheel and rail the
-case names (the Makefile takes them from there, so the two cannot disagree).
+case names (the Makefile takes them from there, so the two cannot disagree); a curve wheel's
+case file is ``$(BUILD)/curves/<curve>/cases/<wheel>.toml``.
 
 Reachability is followed at the level of top-level functions and classes, not whole
 modules: from a stage's entry function, every name it references is resolved through the
@@ -195,7 +196,14 @@ def stage_files(module: str, function: str, root: Path = ROOT) -> list[str]:
 
 
 def case_inputs(path: Path) -> tuple[str, str]:
-    """(wheel, rail) named by the case file ``path`` (its top-level keys ``wheel``, ``rail``)."""
+    """(wheel, rail) named by the case file ``path`` (its top-level keys ``wheel``, ``rail``); a
+    curve wheel's file (``<build>/curves/<curve>/cases/<wheel>.toml``) that is not there yet asks
+    for ``make curve`` (one line)."""
+    path = Path(path)
+    if not path.exists() and path.parent.name == "cases" and path.parent.parent.parent.name == "curves":
+        curve = path.parent.parent.name
+        raise SystemExit(f"{path}: no case file for the curve wheel {curve}/{path.stem}: "
+                         f"run make curve CURVE={curve} first")
     try:
         data = tomllib.loads(path.read_text())
         return str(data["wheel"]), str(data["rail"])

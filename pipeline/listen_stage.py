@@ -67,8 +67,9 @@ def listener_inputs(case: str, distance: float | None = None, height: float | No
     from .wheel_stage import load_wheel
 
     cpath = paths.case_file(case)
-    if not cpath.exists():
-        raise ConfigError(str(cpath), detail=f"no such case; available: {paths.available(paths.cases())}")
+    why = paths.missing_case(case)
+    if why:
+        raise ConfigError(str(cpath), detail=why)
     c = load(cpath, CASE)
     lis = dict(c["listener"])
     over = {f"--{k}": v for k, v in (("distance", distance), ("height", height)) if v is not None}

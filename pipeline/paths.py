@@ -53,13 +53,48 @@ def rail_dir(name: str) -> Path:
     return build() / "rails" / name
 
 
+def curve_wheel(name: str) -> tuple[str, str] | None:
+    """(curve, wheel) of a curve wheel's case name ``<curve>/<wheel>`` (e.g. ``r150/a1i``), None for
+    an ordinary case name; a name with more than one ``/`` or an empty part is neither (ValueError)."""
+    if "/" not in name:
+        return None
+    parts = name.split("/")
+    if len(parts) != 2 or not all(parts) or any(p in (".", "..") for p in parts):
+        raise ValueError(f"case name {name!r}: a curve wheel is named <curve>/<wheel> (e.g. r150/a1i)")
+    return parts[0], parts[1]
+
+
+def curve_dir(curve: str) -> Path:
+    """build/curves/<curve>/: the curve stage's outputs (its wheels' case files in cases/)."""
+    return build() / "curves" / curve
+
+
 def case_dir(name: str) -> Path:
-    """build/cases/<name>/: contact.npz, contact_rf.png (and later stages)."""
-    return build() / "cases" / name
+    """build/cases/<name>/: contact.npz, contact_rf.png (and later stages); a curve wheel
+    ``<curve>/<wheel>`` has build/cases/<curve>/<wheel>/."""
+    cw = curve_wheel(name)
+    return build() / "cases" / (name if cw is None else Path(*cw))
 
 
 def case_file(name: str) -> Path:
+    """pipeline/cases/<name>.toml, or for a curve wheel ``<curve>/<wheel>`` the file the curve
+    stage writes, build/curves/<curve>/cases/<wheel>.toml."""
+    cw = curve_wheel(name)
+    if cw is not None:
+        return curve_dir(cw[0]) / "cases" / f"{cw[1]}.toml"
     return cases() / f"{name}.toml"
+
+
+def missing_case(name: str) -> str | None:
+    """Why the case ``name`` cannot be read (one line, naming what to do; the caller names the
+    file ``case_file(name)``), None when its file exists.  A malformed name is a ValueError."""
+    path = case_file(name)
+    if path.exists():
+        return None
+    cw = curve_wheel(name)
+    if cw is not None:
+        return f"no case file for the curve wheel {name}: run make curve CURVE={cw[0]} first"
+    return f"no such case; available: {available(cases())}"
 
 
 def wheel_file(name: str) -> Path:

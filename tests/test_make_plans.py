@@ -184,3 +184,30 @@ def test_wheel_variable_cannot_disagree_with_the_case(built):
 def test_missing_case_is_a_clear_error(built):
     r = make(built, "-n", "simulate", "CASE=nosuchcase", check=False)
     assert r.returncode != 0 and "pipeline/cases/nosuchcase.toml" in r.stderr
+
+
+def test_curve_wheel_without_its_case_file_asks_for_make_curve(built):
+    r = make(built, "-n", "radiate", "CASE=r150/a1i", check=False)
+    assert r.returncode != 0
+    assert "build/curves/r150/cases/a1i.toml" in r.stderr and "run make curve CURVE=r150 first" in r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1
+
+
+def test_curve_wheel_is_a_case(built):
+    # the curve stage writes the wheel's case file into the build; Make runs the case chain on it
+    cfile = built / "build/curves/r150/cases/a1i.toml"
+    cfile.parent.mkdir(parents=True, exist_ok=True)
+    try:
+        cfile.write_text((built / "pipeline/cases/default.toml").read_text())
+        assert plan(built, "radiate", "CASE=r150/a1i") == [("contact", "r150/a1i"), ("greens", "r150/a1i"),
+                                                           ("simulate", "r150/a1i"), ("radiate", "r150/a1i")]
+        # the case file is tracked like a case file: built, then touched, it plans the chain again
+        (built / "build/cases/r150/a1i").mkdir(parents=True, exist_ok=True)
+        make(built, "-t", "radiate", "CASE=r150/a1i")
+        assert plan(built, "radiate", "CASE=r150/a1i") == []
+        touch(cfile)
+        assert stages(plan(built, "radiate", "CASE=r150/a1i")) == {"contact", "greens", "simulate", "radiate"}
+        assert (built / "build/cases/r150/a1i/radiate.npz").exists()  # the artifacts' folder <curve>/<wheel>
+    finally:
+        shutil.rmtree(built / "build/curves", ignore_errors=True)
+        shutil.rmtree(built / "build/cases/r150", ignore_errors=True)
