@@ -12,6 +12,11 @@ coefficient below which it stops squealing and the modal damping its squealing m
   stability screen instead of an 8 s simulation (``solvers.mitigation.screen_outcome``); the
   damped wheel is then confirmed quiet by one time-loop run.
 
+The screen of a wheel whose lateral creepage is positive (F2 < 0 on the rail: the outer wheel
+of an under-radial wheelset) is that of its mirror image y -> -y: gamma_y, F2, xi2 and the
+modal and rail cross receptances (2-3) change sign, the rest of the point-contact loop is
+unchanged (the friction curve is odd in the slip), so the linearised loop of SPEC 3.5 applies.
+
 Reads the case's contact.npz and greens.npz (``pipeline.study.context.load_context``).
 """
 from __future__ import annotations
@@ -68,8 +73,15 @@ class CaseModels:
 
         c = self.ctx
         idx = np.arange(len(c.wheel["f"])) if modes is None else np.asarray(modes, int)
-        lm = linearise(self.wheel(zeta, idx), c.rail_kernel, self.contact(mu), dt=c.dt, v=c.v,
-                       gamma_y=c.gamma_y, preload=c.preload)
+        wheel, kernel = self.wheel(zeta, idx), np.asarray(c.rail_kernel, float)
+        if c.gamma_y > 0:        # the mirror image y -> -y: cross receptances change sign (module notes)
+            phi = np.array(wheel.phi, float)
+            phi[:, 0] *= -1.0
+            wheel = wheel._replace(phi=phi)
+            kernel = kernel.copy()
+            kernel[:, 0, 1] *= -1.0
+            kernel[:, 1, 0] *= -1.0
+        lm = linearise(wheel, kernel, self.contact(mu), dt=c.dt, v=c.v, gamma_y=-abs(c.gamma_y), preload=c.preload)
         return [r._replace(mode=int(idx[r.mode]) if r.mode >= 0 else -1) for r in screen(lm)]
 
     def unstable(self, mu: float) -> bool:
