@@ -23,13 +23,15 @@ STAGES = {
     "stability_map": "the stability screen over a map study's grid (--study, --quick) -> build/studies/<study>/stability.csv",
     "listen": "what a listener hears: sound pressure at a receiver, dB(A), 1/3 octaves, a calibrated WAV -> listen.*",
     "report": "gather the case's results (wheel, rail, contact, Green's functions, interaction) -> build/report/<case>/report.md",
+    "curve": "the verdict of a curve (--curve): every wheel of the leading bogie screened, squealing ones simulated, "
+             "radiated, heard; what would stop it -> build/curves/<curve>/verdict.csv, verdict.md, bogie.png",
     "check": "validate the configuration files only (no computation)",
     "study": "a parameter study on Dask (SPEC 7): --study map|damping|contact -> build/studies/<study>/",
 }
 
 
 # the stages that run numba code (pipeline/numba_setup.py)
-NUMBA_STAGES = {"contact", "greens", "simulate", "stability", "stability_map", "listen", "study"}
+NUMBA_STAGES = {"curve", "contact", "greens", "simulate", "stability", "stability_map", "listen", "study"}
 
 # stage -> (module of pipeline/, function, the CLI argument it takes)
 RUNNERS = {
@@ -58,6 +60,8 @@ def main(argv=None) -> int:
                     "(default: default)")
     ap.add_argument("--workers", type=int, default=None,
                     help="processes for the harmonic solves, Dask workers of a study's local cluster (default: cores)")
+    ap.add_argument("--curve", default=None, help="curve: curve file pipeline/curves/<name>.toml")
+    ap.add_argument("--no-what-ifs", action="store_true", help="curve: skip the mitigation what-ifs")
     ap.add_argument("--study", default="map", help="study file pipeline/studies/<name>.toml (default: map)")
     ap.add_argument("--quick", action="store_true", help="study: the coarser grid / shorter runs for a quick look")
     ap.add_argument("--scheduler", default=None, help="study: address of a Dask scheduler (tcp://host:port) "
@@ -107,6 +111,13 @@ def main(argv=None) -> int:
                 raise ConfigError(str(case_path), detail=why)
             load(case_path, CASE)
             print(f"wheel {args.wheel}, rail {args.rail} and case {args.case}: configuration OK")
+        elif args.stage == "curve":
+            from .verdict.stage import run_curve
+
+            if not args.curve:
+                raise ConfigError("--curve", detail="the curve stage needs --curve <name> (pipeline/curves/<name>.toml)")
+            res = run_curve(args.curve, progress_bar=not args.no_progress, what_ifs=not args.no_what_ifs)
+            print(res["paths"]["md"])
         elif args.stage == "stability_map":
             from .study.screen import run_stability_map
 

@@ -33,7 +33,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 
-# stage -> (entry module, entry function, the input it takes: wheel | rail | case)
+# stage -> (entry module, entry function, the input it takes: wheel | rail | case | curve)
 ENTRIES = {
     "mesh": ("pipeline.wheel_stage", "run_mesh", "wheel"),
     "modes": ("pipeline.wheel_stage", "run_modes", "wheel"),
@@ -46,6 +46,7 @@ ENTRIES = {
     "stability": ("pipeline.stability_stage", "run_stability", "case"),
     "listen": ("pipeline.listen_stage", "run_listen", "case"),
     "report": ("pipeline.report", "run_report", "case"),
+    "curve": ("pipeline.verdict.stage", "run_curve", "curve"),
 }
 
 
