@@ -28,23 +28,18 @@ import numpy as np
 
 TARGET = 600.0            # s: the issue's target for the 330-case map on 2 cores
 
-STUDY = """name = "bench"
-kind = "map"
-cases = ["default"]
-[grid]
-gamma_y_first = -0.002
-gamma_y_last = -0.06
-gamma_y_step = 0.002
-mu_first = 0.10
-mu_last = 0.60
-mu_step = 0.05
-[quick]
-gamma_y_step = 0.008
-mu_step = 0.10
-[simulation]
-duration = 8.0
-early_stop = {early}
-"""
+def _study_text() -> str:
+    """The benchmark's study file: the grid and the quick steps of pipeline/studies/map.toml (the one
+    home of the map's grid), at the default case only."""
+    import tomllib
+
+    from pipeline import paths
+
+    spec = tomllib.loads((paths.ROOT / "pipeline" / "studies" / "map.toml").read_text())
+    lines = ['name = "bench"', 'kind = "map"', 'cases = ["default"]', "[grid]"]
+    lines += [f"{k} = {v!r}" for k, v in spec["grid"].items()]
+    lines += ["[quick]"] + [f"{k} = {v!r}" for k, v in spec["quick"].items()]
+    return "\n".join(lines + ["[simulation]", "duration = 8.0", "early_stop = {early}", ""])
 
 
 def _run(tmp: Path, early: bool, workers: int, quick: bool) -> dict:
@@ -55,7 +50,7 @@ def _run(tmp: Path, early: bool, workers: int, quick: bool) -> dict:
     from pipeline.study import stage as study_stage
 
     name = f"bench_{'early' if early else 'full'}"
-    (tmp / f"{name}.toml").write_text(STUDY.replace('"bench"', f'"{name}"').format(early=str(early).lower()))
+    (tmp / f"{name}.toml").write_text(_study_text().replace('"bench"', f'"{name}"').format(early=str(early).lower()))
     os.environ["SQUEAL_STUDY_DIR"] = str(tmp)
     out = tmp / f"out_{name}_{workers}"
     t0 = time.perf_counter()

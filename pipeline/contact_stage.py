@@ -8,7 +8,9 @@ undeformed gap from the profiles on the grid dx = v dt (the potential area
 from the gap itself, enlarged until the static patch stays inside), the NORM
 table F3(xi3) with pressures (and its measured interpolation error), the
 tangential compliance A_tau over the approach, and the regularized friction
-curves mu_RF(s) for mu = 0.10 .. 0.60 (step 0.05) at the static preload.
+curve mu_RF(s) of the case's friction at the static preload (``pipeline.friction``: built
+per law and value and cached by value, so that a study or another stage adds the curves of
+other values to the same contact at one curve each).
 
 Artifact: build/cases/<case>/contact.npz (keys in the README) and
 contact_rf.png.
@@ -25,19 +27,19 @@ from .atomic import save_figure
 
 log = logging.getLogger("pipeline.contact")
 
-MU_VALUES = np.round(np.arange(0.10, 0.6001, 0.05), 2)
 DY = 0.5e-3  # lateral element size (m)
 GROW, MAX_TRIES = 1.4, 5  # potential area: growth per retry, retries
 
 
 def contact_setup(case: str) -> tuple[dict, dict, dict, object, dict]:
     """(case, wheel, rail, ContactGeometry, resolved config) of a case; validated."""
+    from .friction import case_friction
     from .profiles import case_contact
 
     c, pw, pr, geo = case_contact(case)
     cfg = {"case": {k: c[k] for k in ("contact", "kinematics", "loading", "time")},
-           "wheel": {k: pw[k] for k in ("tyre", "flange", "material")}, "rail": pr, "mu_values": MU_VALUES.tolist(),
-           "dy": DY, "running_surfaces": geo.config}
+           "wheel": {k: pw[k] for k in ("tyre", "flange", "material")}, "rail": pr,
+           "friction": case_friction(c).config(), "dy": DY, "running_surfaces": geo.config}
     return c, pw, pr, geo, cfg
 
 
@@ -95,12 +97,15 @@ def static_contact(geo, E: float, nu: float, F_L: float, dx: float):
                        f"it is {MAX_TRIES} times enlarged); the profiles are too conformal here for this contact model")
 
 
-def build_contact(c: dict, pw: dict, geo, n_table: int = 41) -> dict:
-    """The contact arrays of one case (pure computation, no I/O); ``geo`` is
-    the case's ContactGeometry (profiles and rigid contact point)."""
+def build_contact(c: dict, pw: dict, geo, n_table: int = 41, frictions=None, curve=None) -> dict:
+    """The contact arrays of one case; ``geo`` is the case's ContactGeometry (profiles and rigid
+    contact point).  Friction curves for ``frictions`` (Friction or float mu each; default: the
+    case's friction), each by ``curve`` (``pipeline.friction.compute_curve`` without I/O, the
+    default, or a ``CurveCache``)."""
     from solvers.contact.compliance import compliance_table
-    from solvers.contact.friction import rf_curve
     from solvers.contact.norm import norm_table, table_midpoint_error
+
+    from .friction import as_friction, case_friction, compute_curve, curve_arrays, entries_of
     from solvers.contact.surfaces import patch_metrics
 
     E, nu = pw["material"]["E"], pw["material"]["nu"]
@@ -111,14 +116,11 @@ def build_contact(c: dict, pw: dict, geo, n_table: int = 41) -> dict:
     table = norm_table(gap, xi_nodes, dx, DY, E, nu)
     err = table_midpoint_error(table, gap, dx, DY, E, nu)
     A1_nodes, A2_nodes = compliance_table(xi_nodes, table.p, dx, DY, E, nu)
-    curves = [rf_curve(static.p, dx, DY, v, mu, E, nu) for mu in MU_VALUES]
-    ns = max(len(k.s) for k in curves)
+    frictions = [case_friction(c)] if frictions is None else [as_friction(f) for f in frictions]
+    curves = [(curve or compute_curve)(static.p, dx, DY, v, f, E, nu) for f in frictions]
     patch = patch_metrics(static.p, x, y)
     rc = geo.contact
     second = rc.second if rc.second is not None else (np.nan, np.nan)
-
-    def pad(arrs):
-        return np.array([np.pad(a, (0, ns - len(a)), mode="edge") for a in arrs])
 
     return {
         "x": x, "y": y, "dx": np.float64(dx), "dy": np.float64(DY), "gap": gap,
@@ -133,26 +135,28 @@ def build_contact(c: dict, pw: dict, geo, n_table: int = 41) -> dict:
         "xi3_nodes": xi_nodes, "F3_nodes": table.F3, "q_nodes": table.q, "pressure_nodes": table.p,
         "table_error_xi3": err["xi3"], "table_error_F3": err["force"], "table_error_p": err["pressure"],
         "A1_nodes": A1_nodes, "A2_nodes": A2_nodes,
-        "mu_values": MU_VALUES, "rf_n": np.array([len(k.s) for k in curves]),
-        "rf_s": pad([k.s for k in curves]), "rf_mu": pad([k.mu_rf for k in curves]),
-        "rf_slope": pad([k.slope for k in curves]), "rf_gamma_sat": np.array([k.gamma_sat for k in curves]),
-    }
+        "speed": np.float64(v), "material_E": np.float64(E), "material_nu": np.float64(nu),
+    } | curve_arrays(entries_of(frictions, curves))
 
 
 def run_contact(case: str) -> dict:
+    from .friction import contact_curve_cache
+
     c, pw, pr, geo, cfg = contact_setup(case)
     t0 = time.perf_counter()
-    arrays = build_contact(c, pw, geo)
+    cache = contact_curve_cache(case)
+    arrays = build_contact(c, pw, geo, curve=cache)
     out = paths.case_dir(case)
     plot_rf(arrays, out / "contact_rf.png", f"{case}: dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm")
     artifacts.save_npz(out / "contact.npz", "contact", cfg, **arrays)
     err = np.nanmax(arrays["table_error_F3"][arrays["table_error_xi3"] > 0.5 * arrays["xi3_static"]])
     log.info("contact %s: contact point y^W = %+.2f mm, y^R = %+.2f mm (angle %+.1f deg); grid %d x %d (dx = %.3g mm), "
              "patch %.0f mm^2 (%.1f x %.1f mm), static approach %.1f um, NORM table error %.2g %% near the working "
-             "point, %d RF curves in %.1f s -> %s", case, 1e3 * arrays["y_wheel"], 1e3 * arrays["y_rail"],
+             "point, friction %s (%s) in %.1f s -> %s", case, 1e3 * arrays["y_wheel"], 1e3 * arrays["y_rail"],
              np.degrees(arrays["contact_angle"]), len(arrays["x"]), len(arrays["y"]), 1e3 * arrays["dx"],
              1e6 * arrays["patch_area"], 1e3 * arrays["patch_length"], 1e3 * arrays["patch_width"],
-             1e6 * arrays["xi3_static"], 100 * err, len(MU_VALUES), time.perf_counter() - t0, out / "contact.npz")
+             1e6 * arrays["xi3_static"], 100 * err, ", ".join(arrays["rf_label"]), cache.summary(),
+             time.perf_counter() - t0, out / "contact.npz")
     return arrays
 
 

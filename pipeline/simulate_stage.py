@@ -30,12 +30,14 @@ def simulate_config(case: str):
 def run_simulate(case: str) -> dict:
     from solvers.interaction import WheelModes, contact_model, simulate
 
+    from .friction import case_friction
+
     c, ccfg, gcfg, cfg = simulate_config(case)
     out = paths.case_dir(case)
     con, _ = artifacts.load_npz(out / "contact.npz", "contact", ccfg, make_target=f"contact CASE={case}")
     gr, _ = artifacts.load_npz(out / "greens.npz", "greens", gcfg, make_target=f"greens CASE={case}")
     wheel = WheelModes(gr["wheel_f"], gr["wheel_mass"], gr["wheel_zeta"], gr["wheel_phi"])
-    cm = contact_model(con, c["friction"]["mu"])
+    cm = contact_model(con, case_friction(c))
     res = simulate(wheel, gr["rail_kernel"], cm, dt=c["time"]["dt"], v=c["kinematics"]["speed"],
                    gamma_y=c["kinematics"]["gamma_y"], gamma_x=c["kinematics"]["gamma_x"],
                    preload=c["loading"]["preload"], duration=c["time"]["duration"],

@@ -37,7 +37,14 @@ def case_linear_model(case: str, mu: float | None = None, gamma_y: float | None 
     modes, _ = artifacts.load_npz(paths.wheel_dir(c["wheel"]) / "modes.npz", "wheel-modes")
     labels = np.array([f"({n},{m},{k})" for n, m, k in zip(modes["n"], modes["m"], modes["cls"])])
     wheel = WheelModes(gr["wheel_f"], gr["wheel_mass"], gr["wheel_zeta"], gr["wheel_phi"])
-    mu = c["friction"]["mu"] if mu is None else mu
+    if mu is None:
+        from .friction import case_friction
+
+        mu = case_friction(c)
+    else:
+        from .friction import with_curves
+
+        con = with_curves(case, con, [mu])
     gamma_y = c["kinematics"]["gamma_y"] if gamma_y is None else gamma_y
     lm = linearise(wheel, gr["rail_kernel"], contact_model(con, mu), dt=c["time"]["dt"],
                    v=c["kinematics"]["speed"], gamma_y=gamma_y, preload=c["loading"]["preload"])

@@ -59,7 +59,7 @@ def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool 
     freqs = spec["quick"]["frequencies"] if quick else cr["frequencies"]
     contexts, tasks = {}, []
     for case in spec["cases"]:
-        ctx = load_context(case, radiation=False)
+        ctx = load_context(case, radiation=False, mus=[m for m in [spec["operating"]["mu"]] if m is not None])
         mu = ctx.mu if spec["operating"]["mu"] is None else spec["operating"]["mu"]
         gy = ctx.gamma_y if spec["operating"]["gamma_y"] is None else spec["operating"]["gamma_y"]
         modes = selected_modes(spec, ctx, quick)

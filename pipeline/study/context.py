@@ -87,11 +87,15 @@ class CaseContext:
         return f"({int(w['n'][i])},{int(w['m'][i])},{w['cls'][i]})"
 
 
-def load_context(case: str, *, radiation: bool = True, zeta_overrides: dict | None = None) -> CaseContext:
+def load_context(case: str, *, radiation: bool = True, zeta_overrides: dict | None = None,
+                 mus=()) -> CaseContext:
     """The CaseContext of ``case`` from build/cases/<case>/contact.npz, greens.npz and the wheel's
     modes.npz (ArtifactError when missing or stale, naming the make target).  ``zeta_overrides``
-    {mode: zeta} only for the radiation model (the simulation's damping is set per task)."""
+    {mode: zeta} only for the radiation model (the simulation's damping is set per task).  ``mus``:
+    the friction coefficients the study runs besides the case's own; their curves are built on the
+    case's contact (``pipeline.friction.with_curves``, cached by value)."""
     from ..contact_stage import contact_inputs
+    from ..friction import with_curves
     from ..greens_stage import greens_inputs
 
     c, _, _, ccfg = contact_inputs(case)
@@ -99,6 +103,7 @@ def load_context(case: str, *, radiation: bool = True, zeta_overrides: dict | No
     cdir = paths.case_dir(case)
     con, cprov = artifacts.load_npz(cdir / "contact.npz", "contact", ccfg, make_target=f"contact CASE={case}")
     gr, gprov = artifacts.load_npz(cdir / "greens.npz", "greens", gcfg, make_target=f"greens CASE={case}")
+    con = with_curves(case, con, [float(m) for m in mus])
     if len(modes["f_hz"]) != len(gr["wheel_f"]) or not np.allclose(modes["f_hz"], gr["wheel_f"]):
         raise artifacts.ArtifactError(cdir / "greens.npz", f"its wheel modes are not those of "
                                       f"{paths.wheel_dir(c['wheel']) / 'modes.npz'}; run `make greens CASE={case}`")

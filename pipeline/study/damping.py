@@ -42,7 +42,7 @@ def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool 
     from .worker import damping_case
 
     case = spec["cases"][0]
-    ctx = load_context(case, radiation=False)
+    ctx = load_context(case, radiation=False, mus=[m for m in [spec["operating"]["mu"]] if m is not None])
     mu, gamma_y = operating(spec, ctx)
     sim, bis, proc = spec["simulation"], spec["bisection"], spec["procedure"]
     run_as = Simulation.of(sim)

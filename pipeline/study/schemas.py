@@ -40,7 +40,7 @@ MAP = COMMON | {
         "gamma_y_first": Field(**GAMMA, doc="first lateral creepage"),
         "gamma_y_last": Field(**GAMMA),
         "gamma_y_step": Field(**STEP, max=0.1),
-        "mu_first": Field(**MU, doc="friction coefficients: must be among the contact stage's curves"),
+        "mu_first": Field(**MU, doc="friction coefficients (any: their curves are built on each case's contact and cached by value)"),
         "mu_last": Field(**MU),
         "mu_step": Field(**STEP, max=1.0),
     },

@@ -55,13 +55,38 @@ class ContactModel(NamedTuple):
     nu: float = 0.3
 
 
-def contact_model(arrays, mu: float) -> ContactModel:
+def curve_label(law) -> str:
+    """The name of a friction curve: ``coulomb(mu=0.35)`` for a float (the Coulomb coefficient),
+    else ``<name>(<param>=<value>, ...)`` of anything with ``.name`` and ``.params`` (a
+    ``FrictionLaw``, the pipeline's resolved friction), parameters sorted, values to 10 digits."""
+    if isinstance(law, (int, float, np.floating, np.integer)):
+        name, params = "coulomb", {"mu": float(law)}
+    else:
+        name, params = str(law.name), dict(law.params)
+    return name + "(" + ", ".join(f"{k}={float(v):.10g}" for k, v in sorted(params.items())) + ")"
+
+
+def curve_labels(arrays) -> list[str]:
+    """The labels of the friction curves in a contact artifact's arrays (``rf_label``; artifacts
+    without it hold Coulomb curves named by ``mu_values``)."""
+    keys = set(arrays.files) if hasattr(arrays, "files") else set(arrays)
+    if "rf_label" in keys:
+        return [str(x) for x in np.asarray(arrays["rf_label"])]
+    return [curve_label(float(m)) for m in np.asarray(arrays["mu_values"], float)]
+
+
+def contact_model(arrays, law) -> ContactModel:
     """ContactModel from the contact stage's arrays (a dict or NpzFile with the keys of
-    contact.npz) for the Coulomb coefficient ``mu`` (one of ``mu_values``)."""
+    contact.npz) with the friction curve of ``law``: a float (the Coulomb coefficient) or a
+    friction law (``.name``, ``.params``), selected by its ``curve_label`` among the curves held.
+    The curve is taken as stored (a falling law's curve rises to a peak and falls: nothing
+    here makes it monotone)."""
+    labels = curve_labels(arrays)
+    want = curve_label(law)
+    if want not in labels:
+        raise ValueError(f"no friction curve for {want}; available: {labels}")
+    i = labels.index(want)
     mus = np.asarray(arrays["mu_values"], float)
-    i = int(np.argmin(np.abs(mus - mu)))
-    if abs(mus[i] - mu) > 1e-9:
-        raise ValueError(f"no friction curve for mu = {mu}; available: {mus.tolist()}")
     n = int(arrays["rf_n"][i])
     keys = set(arrays.files) if hasattr(arrays, "files") else set(arrays)
     f = lambda k: np.ascontiguousarray(np.asarray(arrays[k], float)) if k in keys else None   # noqa: E731

@@ -34,13 +34,14 @@ def test_three_positions_from_the_profiles():
     from geometry.calibration import THESIS_POSITIONS, jump_offsets
     from geometry.contact_point import FlangeContact, TrackRail, rigid_contact, wheel_shift
     from pipeline.contact_stage import build_contact, contact_setup
+    from pipeline.study.map import map_mus
     from pipeline.profiles import read_profile
     from solvers.contact.surfaces import patch_metrics
 
     res = {}
     for case in CASES:
         c, pw, pr, geo, _ = contact_setup(case)
-        a = build_contact(c, pw, geo)
+        a = build_contact(c, pw, geo, frictions=map_mus())
         p = a["p3_static"]
         F_L = c["loading"]["preload"]
         assert p.min() >= 0 and abs(p.sum() * a["dx"] * a["dy"] - F_L) < 1e-6 * F_L
