@@ -43,14 +43,20 @@ class CaseModels:
     """One case's linearised and time-domain models at any friction coefficient and wheel damping."""
 
     def __init__(self, case: str):
+        from solvers.timeloop.inputs import curve_labels
+
         from ..study.context import load_context
 
         self.ctx = load_context(case, radiation=False)
-        con = self.ctx.contact
-        self.mus = np.asarray(con["mu_values"], float)
+        # the Coulomb curves the contact artifact holds (labels 'coulomb(mu=0.35)'), by coefficient
+        self.mus = np.array([float(lab.split("=")[1].rstrip(")")) for lab in curve_labels(self.ctx.contact)
+                             if lab.startswith("coulomb(mu=")], float)
+        if self.mus.size == 0:
+            raise ValueError(f"case {case}: its friction is not Coulomb's; the what-ifs scale a Coulomb curve")
 
     def contact(self, mu: float):
-        """The case's ContactModel with the Coulomb friction curve at ``mu`` (any value)."""
+        """The case's ContactModel with the Coulomb friction curve at ``mu`` (any value), scaled from
+        the nearest curve the contact artifact holds (exact: ``solvers.mitigation``)."""
         from solvers.interaction import contact_model
         from solvers.mitigation import coulomb_curve_at
 
