@@ -32,6 +32,13 @@ OBSERVATIONS = [
      "vehicle": "tram with resilient wheels", "radius_m": None, "speed_kmh": None, "f_hz": "780-800",
      "level": None, "note": "squeal in the small-radius curves of the line, reduced by tuned dampers on the wheels",
      "model": ("tram", 25.0, 15.0)},
+    {"key": "wiki-tram",
+     "source": "German Wikipedia, 'Kurvenquietschen' (secondary source; its literature: Hubner 1973, dissertation "
+               "TU Berlin; Lipinsky), as stored at de.zxc.wiki/wiki/Kurvenquietschen",
+     "vehicle": "tram", "radius_m": None, "speed_kmh": 14.0, "f_hz": "1572-1578",
+     "level": "130 dB(A) at the inner wheel rim, axial direction, 20 km/h (85 dB(A) at the outer wheel rim)",
+     "note": "about 1578 Hz at 14 km/h and 1572 Hz at 28 km/h; main range 1500-6000 Hz",
+     "model": ("tram", 25.0, 15.0)},
     {"key": "meehan",
      "source": "Meehan & Liu, 2018, 'Modelling and mitigation of wheel squeal noise amplitude', J. Sound Vib. 413 "
                "144-158",
