@@ -40,8 +40,9 @@ def wheel_case(info: CurveInfo, p: WheelPoint) -> dict:
     try:
         validate(case, CASE, str(where))
     except ConfigError as e:
+        what = "; ".join(f"{k} = {v!r}: expected {a}" for k, v, a in e.errors) or str(e.detail)
         raise ConfigError(info.sources[0] if info.sources else info.name,
-                          detail=f"wheel {p.wheel}'s operating point is outside a case's range: {e}") from None
+                          detail=f"steady curving puts wheel {p.wheel} outside a case's range: {what}") from None
     return case
 
 

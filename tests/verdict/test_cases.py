@@ -37,5 +37,5 @@ def test_operating_point_out_of_range_is_one_line(tmp_path, monkeypatch):
     with pytest.raises(ConfigError) as e:
         wheel_case(INFO, POINT._replace(dy_wr=0.045))
     msg = str(e.value)
-    assert "pipeline/curves/r150.toml" in msg and "dy_wr" in msg and "a1i" in msg
+    assert "pipeline/curves/r150.toml" in msg and "dy_wr = 0.045" in msg and "a1i" in msg and "\n" not in msg
     assert not (tmp_path / "curves").exists()
