@@ -10,48 +10,16 @@ import importlib
 import logging
 import sys
 
-STAGES = {
-    "mesh": "mesh the wheel cross-section (Gmsh) -> build/wheels/<wheel>/section.msh",
-    "modes": "wheel modes per Fourier harmonic (dolfinx + SLEPc), classified -> modes.npz, modes.csv",
-    "shapes": "offscreen 3D renders of every wheel mode and a gallery -> shapes/*.png",
-    "rail": "rail cross-section, waveguide FE, dispersion and receptances -> build/rails/<rail>/rail.npz",
-    "contact": "contact of the case: gap, NORM table, compliance, friction curves -> build/cases/<case>/contact.npz",
-    "greens": "wheel Green's function (Kropp, modal filters) and moving rail Green's function -> greens.npz",
-    "simulate": "time-domain wheel/rail interaction of the case (numba) -> build/cases/<case>/simulate.npz",
-    "radiate": "sound power of the wheel under the simulated contact forces (Thompson-Jones) -> radiate.npz",
-    "stability": "frequency-domain stability screen of the case (linearised time loop) -> stability.npz, .csv, .png",
-    "stability_map": "the stability screen over a map study's grid (--study, --quick) -> build/studies/<study>/stability.csv",
-    "listen": "what a listener hears: sound pressure at a receiver, dB(A), 1/3 octaves, a calibrated WAV -> listen.*",
-    "report": "gather the case's results (wheel, rail, contact, Green's functions, interaction) -> build/report/<case>/report.md",
-    "curve": "the verdict of a curve (--curve): every wheel of the leading bogie screened, squealing ones simulated, "
-             "radiated, heard; what would stop it -> build/curves/<curve>/verdict.csv, verdict.md, bogie.png",
-    "check": "validate the configuration files only (no computation)",
-    "study": "a parameter study on Dask (SPEC 7): --study map|damping|contact -> build/studies/<study>/",
-}
-
+from .stages import STAGES
 
 # the stages that run numba code (pipeline/numba_setup.py)
-NUMBA_STAGES = {"curve", "contact", "greens", "simulate", "stability", "stability_map", "listen", "study"}
-
-# stage -> (module of pipeline/, function, the CLI argument it takes)
-RUNNERS = {
-    "mesh": ("wheel_stage", "run_mesh", "wheel"),
-    "modes": ("wheel_stage", "run_modes", "wheel"),
-    "shapes": ("wheel_stage", "run_shapes", "wheel"),
-    "rail": ("rail_stage", "run_rail", "rail"),
-    "contact": ("contact_stage", "run_contact", "case"),
-    "greens": ("greens_stage", "run_greens", "case"),
-    "simulate": ("simulate_stage", "run_simulate", "case"),
-    "radiate": ("radiate_stage", "run_radiate", "case"),
-    "stability": ("stability_stage", "run_stability", "case"),
-    "report": ("report", "run_report", "case"),
-}
+NUMBA_STAGES = {name for name, st in STAGES.items() if st.numba}
 
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(prog="python -m pipeline", description="Curve squeal pipeline stages.",
                                  formatter_class=argparse.RawDescriptionHelpFormatter,
-                                 epilog="stages:\n" + "\n".join(f"  {k:8s} {v}" for k, v in STAGES.items()))
+                                 epilog="stages:\n" + "\n".join(f"  {k:8s} {v.help}" for k, v in STAGES.items()))
     ap.add_argument("stage", choices=list(STAGES))
     ap.add_argument("--wheel", default="c20", help="wheel parameter file geometry/wheels/<name>.toml (default c20)")
     ap.add_argument("--rail", default="bv50", help="rail parameter file geometry/rails/<name>.toml (default bv50)")
@@ -67,7 +35,7 @@ def main(argv=None) -> int:
     ap.add_argument("--scheduler", default=None, help="study: address of a Dask scheduler (tcp://host:port) "
                                                       "instead of a local cluster")
     ap.add_argument("--out", default=None, help="study: output folder (default build/studies/<study>[-quick])")
-    ap.add_argument("--no-progress", action="store_true", help="study: no progress bar")
+    ap.add_argument("--no-progress", action="store_true", help="study, curve: no progress bar")
     ap.add_argument("--distance", type=float, default=None,
                     help="listen: receiver from the track centre (m; default: the case's [listener], 7.5)")
     ap.add_argument("--height", type=float, default=None,
@@ -132,9 +100,9 @@ def main(argv=None) -> int:
 
             run_listen(args.case, distance=args.distance, height=args.height, allow_silent=args.allow_silent)
         else:
-            module, func, arg = RUNNERS[args.stage]
-            run = getattr(importlib.import_module(f".{module}", __package__), func)
-            run(getattr(args, arg), *([args.workers] if args.stage == "modes" else []))
+            st = STAGES[args.stage]
+            run = getattr(importlib.import_module(f".{st.module}", __package__), st.function)
+            run(getattr(args, st.takes), *([args.workers] if args.stage == "modes" else []))
     except (ConfigError, ArtifactError) as e:
         print(f"error: {e}", file=sys.stderr)
         return 2

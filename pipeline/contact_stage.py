@@ -2,8 +2,8 @@
 (SPEC 4), computed with Kalker's discretised half-space theory.
 
 The contact point is the rigid contact of the case's wheel and rail profiles
-at its wheelset offset (``pipeline.profiles.case_contact``, the function the
-greens and radiate stages use too).  Around it the stage builds the
+at its wheelset offset (``pipeline.case.resolve_case``, which every stage
+reads).  Around it the stage builds the
 undeformed gap from the profiles on the grid dx = v dt (the potential area
 from the gap itself, enlarged until the static patch stays inside), the NORM
 table F3(xi3) with pressures (and its measured interpolation error), the
@@ -32,15 +32,14 @@ GROW, MAX_TRIES = 1.4, 5  # potential area: growth per retry, retries
 
 
 def contact_setup(case: str) -> tuple[dict, dict, dict, object, dict]:
-    """(case, wheel, rail, ContactGeometry, resolved config) of a case; validated."""
+    """(case, wheel, rail, ContactGeometry, resolved config) of a case (``pipeline.case.resolve_case``;
+    the friction's configuration from ``pipeline.friction``)."""
+    from .case import resolve_case
     from .friction import case_friction
-    from .profiles import case_contact
 
-    c, pw, pr, geo = case_contact(case)
-    cfg = {"case": {k: c[k] for k in ("contact", "kinematics", "loading", "time")},
-           "wheel": {k: pw[k] for k in ("tyre", "flange", "material")}, "rail": pr,
-           "friction": case_friction(c).config(), "dy": DY, "running_surfaces": geo.config}
-    return c, pw, pr, geo, cfg
+    rc = resolve_case(case)
+    cfg = dict(rc.config, friction=case_friction(rc.case).config(), dy=DY)
+    return rc.case, rc.wheel, rc.rail, rc.geometry, cfg
 
 
 def contact_inputs(case: str) -> tuple[dict, dict, dict, dict]:

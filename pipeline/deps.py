@@ -21,8 +21,9 @@ makes radiate depend on what ``load_wheel`` uses, not on the mode renderer that
 the analysis misses only names built at run time (``getattr(m, "f" + x)``,
 ``importlib``), which the stages do not use.
 
-The only module names written here are the stages' entry points (``ENTRIES``); everything
-else is found from the imports, so code moved between modules keeps its dependencies.
+The only module names used here are the stages' entry points (``ENTRIES``, from the stage table
+``pipeline/stages.py`` that the command line reads too); everything else is found from the
+imports, so code moved between modules keeps its dependencies.
 """
 from __future__ import annotations
 
@@ -33,21 +34,12 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 
-# stage -> (entry module, entry function, the input it takes: wheel | rail | case | curve)
-ENTRIES = {
-    "mesh": ("pipeline.wheel_stage", "run_mesh", "wheel"),
-    "modes": ("pipeline.wheel_stage", "run_modes", "wheel"),
-    "shapes": ("pipeline.wheel_stage", "run_shapes", "wheel"),
-    "rail": ("pipeline.rail_stage", "run_rail", "rail"),
-    "contact": ("pipeline.contact_stage", "run_contact", "case"),
-    "greens": ("pipeline.greens_stage", "run_greens", "case"),
-    "simulate": ("pipeline.simulate_stage", "run_simulate", "case"),
-    "radiate": ("pipeline.radiate_stage", "run_radiate", "case"),
-    "stability": ("pipeline.stability_stage", "run_stability", "case"),
-    "listen": ("pipeline.listen_stage", "run_listen", "case"),
-    "report": ("pipeline.report", "run_report", "case"),
-    "curve": ("pipeline.verdict.stage", "run_curve", "curve"),
-}
+if str(ROOT) not in sys.path:  # run as a script (pipeline/ first on the path): the package's stage table
+    sys.path.insert(0, str(ROOT))
+from pipeline.stages import STAGES  # noqa: E402  (standard library only, like this file)
+
+# stage -> (entry module, entry function, the input it takes: wheel | rail | case), from the one stage table
+ENTRIES = {name: (f"pipeline.{st.module}", st.function, st.takes) for name, st in STAGES.items() if st.make}
 
 
 DEFS = (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)
@@ -190,7 +182,7 @@ def stage_files(module: str, function: str, root: Path = ROOT) -> list[str]:
     mod = g.load(module)
     if mod is None or function not in mod.defs:
         raise SystemExit(f"pipeline/deps.py: stage entry {module}.{function} not found; "
-                         f"update ENTRIES in pipeline/deps.py")
+                         f"update the stage table pipeline/stages.py")
     g.reach(module, function)
     g.run()
     return sorted(p.relative_to(root).as_posix() for p in g.files)

@@ -54,10 +54,11 @@ RAIL_LAGS = 4096  # moving-kernel length (0.147 s, 2 m at 50 km/h); its decay is
 
 
 def greens_inputs(case: str):
+    from .case import resolve_case
     from .config import config_hash
-    from .profiles import case_contact
 
-    c, pw, pr, geo = case_contact(case)  # the contact point of the profiles, as the contact stage's
+    rc = resolve_case(case)  # the contact point of the profiles, as the contact stage's
+    c, pw, pr, geo = rc.case, rc.wheel, rc.rail, rc.geometry
     where = f"case '{case}', dy_WR = {1e3 * c['contact']['dy_wr']:+.1f} mm (y^W = {1e3 * geo.contact.y_wheel:+.2f} mm)"
     yw, yr = geo.contact.y_wheel, rail_point(c["rail"], pr, geo.contact.y_rail, where)  # yr: the rail model's node
     modes, mprov = artifacts.load_npz(paths.wheel_dir(c["wheel"]) / "modes.npz", "wheel-modes", pw,

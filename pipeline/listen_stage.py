@@ -40,7 +40,7 @@ import numpy as np
 
 from . import artifacts, paths
 from .atomic import save_figure
-from .config import ConfigError, config_hash, load, validate
+from .config import ConfigError, config_hash, validate
 
 log = logging.getLogger("pipeline.listen")
 
@@ -63,14 +63,11 @@ def listener_inputs(case: str, distance: float | None = None, height: float | No
     ConfigError naming the file (or the command line), key, value and allowed range."""
     from postprocess.listener import Geometry
 
-    from .schemas import CASE, LISTENER
-    from .wheel_stage import load_wheel
+    from .case import resolve_case
+    from .schemas import LISTENER
 
-    cpath = paths.case_file(case)
-    why = paths.missing_case(case)
-    if why:
-        raise ConfigError(str(cpath), detail=why)
-    c = load(cpath, CASE)
+    rc = resolve_case(case)
+    cpath, c, pw = rc.case_file, rc.case, rc.wheel
     lis = dict(c["listener"])
     over = {f"--{k}": v for k, v in (("distance", distance), ("height", height)) if v is not None}
     if over:
@@ -78,7 +75,6 @@ def listener_inputs(case: str, distance: float | None = None, height: float | No
         lis.update({k[2:]: v for k, v in got.items()})
     source = {k: ("command line", f"--{k}") if f"--{k}" in over else (str(cpath), f"listener.{k}")
               for k in ("distance", "height")}
-    pw, _ = load_wheel(c["wheel"])
     z_rc, radius = pw["axle"]["rolling_circle_z"], pw["tyre"]["rolling_radius"]
     outer = radius + pw["flange"]["height"]
     horizontal = lis["distance"] - z_rc

@@ -60,10 +60,10 @@ SETTINGS = {"rho": 1.21, "c0": 343.0, "faces": 2, "web_thickness": "tyre", "tors
 
 
 def _case_wheel(case: str):
-    from .profiles import case_contact
+    from .case import resolve_case
 
-    c, pw, _, geo = case_contact(case)  # the contact point of the profiles, as the contact and greens stages'
-    y_w = geo.contact.y_wheel
+    rc = resolve_case(case)  # the contact point of the profiles, as the contact and greens stages'
+    c, pw, y_w = rc.case, rc.wheel, rc.contact.y_wheel
     modes, mprov = artifacts.load_npz(paths.wheel_dir(c["wheel"]) / "modes.npz", "wheel-modes", pw,
                                       make_target=f"modes WHEEL={c['wheel']}")
     return c, pw, modes, mprov, y_w
@@ -71,7 +71,7 @@ def _case_wheel(case: str):
 
 def load_radiation_model(case: str, zeta_overrides: dict | None = None):
     """The radiation model of the case's wheel at its contact point (y^W of the rigid
-    contact of the case's profiles, ``pipeline.profiles.case_contact``): modes,
+    contact of the case's profiles, ``pipeline.case.resolve_case``): modes,
     surfaces, surface nodes, the contact point (interpolated on the running surface
     exactly as the Green's functions stage does, so the wheel is the simulation's), damping [4.11] (``zeta_overrides`` {mode index: zeta} as
     ``solvers.receptance.modal_damping``).  Load once, reuse for many force sets."""

@@ -15,8 +15,6 @@ import numpy as np
 from solvers.constants import SQUEAL_LEVEL_DB
 
 from . import artifacts, paths
-from .config import load
-from .schemas import CASE
 
 log = logging.getLogger("pipeline.report")
 
@@ -191,8 +189,10 @@ the limit cycle in the file is {float(a['wav_L_p']):.1f} dB at {float(a['wav_f_p
 
 
 def run_report(case: str) -> str:
-    cpath = paths.case_file(case)
-    c = load(cpath, CASE)
+    from .case import resolve_case
+
+    rc = resolve_case(case)
+    cpath, c = rc.case_file, rc.case
     out = paths.build() / "report" / case
     figdir = out / "figures"
     figdir.mkdir(parents=True, exist_ok=True)

@@ -31,3 +31,99 @@ def test_missing_curve_wheel_asks_for_make_curve(tmp_path, monkeypatch):
     f.parent.mkdir(parents=True)
     f.write_text("")
     assert paths.missing_case("r150/a1i") is None
+
+
+def test_resolved_default_case():
+    from pipeline.case import resolve_case
+
+    rc = resolve_case("default")
+    assert rc.name == "default" and rc.case["wheel"] == "c20" and rc.wheel["name"] == "c20" and rc.rail["name"] == "bv50"
+    assert (rc.friction.law, rc.friction.params, rc.friction.mu) == ("coulomb", {"mu": 0.35}, 0.35)
+    # thesis [4.1] at -15 mm: y^W = +32 mm, y^R = +12 mm (the worn profiles were fitted to them, within 1.5 mm)
+    assert abs(rc.contact.y_wheel - 0.032) < 1.5e-3 and abs(rc.contact.y_rail - 0.012) < 1.5e-3
+    assert rc.config["running_surfaces"]["dy_wr"] == -0.015
+    assert resolve_case("default") is rc  # memoised
+
+
+def test_resolved_once_per_process_and_again_when_a_file_changes(tmp_path, monkeypatch):
+    import pipeline.profiles as P
+    from pipeline import case as C
+
+    calls = []
+    real = P.case_contact
+    monkeypatch.setattr(P, "case_contact", lambda name: calls.append(name) or real(name))
+    monkeypatch.setenv("SQUEAL_CASE_DIR", str(tmp_path))
+    text = (paths.ROOT / "pipeline/cases/default.toml").read_text()
+    (tmp_path / "mine.toml").write_text(text)
+    a = C.resolve_case("mine")
+    assert C.resolve_case("mine") is a and calls == ["mine"]
+    (tmp_path / "mine.toml").write_text(text.replace("dy_wr = -0.015", "dy_wr = -0.010"))
+    b = C.resolve_case("mine")
+    assert calls == ["mine", "mine"] and b.case["contact"]["dy_wr"] == -0.010 and b.contact.y_wheel != a.contact.y_wheel
+
+
+def test_missing_and_malformed_cases_are_one_line_errors(tmp_path, monkeypatch):
+    from pipeline.case import resolve_case
+    from pipeline.config import ConfigError
+
+    monkeypatch.setenv("SQUEAL_BUILD_DIR", str(tmp_path))
+    with pytest.raises(ConfigError, match="run make curve CURVE=r150 first") as e:
+        resolve_case("r150/a1i")
+    assert "\n" not in str(e.value)
+    with pytest.raises(ConfigError, match="<curve>/<wheel>"):
+        resolve_case("a/b/c")
+
+
+def test_every_stage_of_a_case_derives_its_contact_point_once(monkeypatch):
+    """simulate's configuration (its contact's and its greens') and stability's (which also asks
+    for simulate's) derived the contact point 2 and 4 times before the resolved case; now once."""
+    import pipeline.profiles as P
+    from pipeline import case as C
+    from pipeline.simulate_stage import simulate_config
+
+    C.clear()
+    calls = []
+    real = P.case_contact
+    monkeypatch.setattr(P, "case_contact", lambda name: calls.append(name) or real(name))
+    simulate_config("default")
+    simulate_config("default")
+    from pipeline.contact_stage import contact_inputs
+    from pipeline.greens_stage import greens_inputs
+
+    contact_inputs("default")
+    greens_inputs("default")
+    assert calls == ["default"]
+
+
+def test_default_artifacts_stay_valid():
+    """The configuration hashes are those of the artifacts built before the resolved case
+    (build/cases/default: contact.npz and greens.npz load against today's configuration)."""
+    from pipeline import artifacts
+    from pipeline.contact_stage import contact_inputs
+
+    cfg = contact_inputs("default")[3]
+    artifacts.load_npz(paths.case_dir("default") / "contact.npz", "contact", cfg)
+    g = paths.case_dir("default") / "greens.npz"
+    if g.exists():
+        from pipeline.greens_stage import greens_inputs
+
+        artifacts.load_npz(g, "greens", greens_inputs("default")[-1])
+
+
+def test_one_stage_table_for_the_command_line_and_make():
+    import subprocess
+    import sys
+
+    from pipeline import __main__ as cli
+    from pipeline import deps
+    from pipeline.stages import STAGES
+
+    assert set(deps.ENTRIES) == {n for n, s in STAGES.items() if s.make}
+    assert {"contact", "greens", "simulate", "radiate", "stability", "listen", "report"} <= set(deps.ENTRIES)
+    assert cli.NUMBA_STAGES == {n for n, s in STAGES.items() if s.numba}
+    for name, (module, function, takes) in deps.ENTRIES.items():
+        assert function in deps.Graph().load(module).defs, name
+    # deps.py and the table need the standard library only (no site-packages: Make runs it before the venv)
+    r = subprocess.run([sys.base_prefix + "/bin/python3", "-I", "-S", "pipeline/deps.py", "--case",
+                        "pipeline/cases/default.toml"], cwd=paths.ROOT, capture_output=True, text=True)
+    assert r.returncode == 0 and r.stdout.split() == ["c20", "bv50"], r.stderr

@@ -13,8 +13,7 @@ import csv
 import numpy as np
 
 from .. import artifacts, paths
-from ..config import load
-from ..schemas import CASE
+from ..case import resolve_case
 
 LF_HZ = 200.0
 
@@ -64,7 +63,7 @@ def write_agreement(out, rows: list[dict], spec: dict) -> dict:
         table = list(csv.DictReader(fh))
     modes = {}
     for case in spec["cases"]:
-        c = load(paths.case_file(case), CASE)
+        c = resolve_case(case).case
         m, _ = artifacts.load_npz(paths.wheel_dir(c["wheel"]) / "modes.npz", "wheel-modes")
         modes[case] = (m["f_hz"], [f"({n},{k},{c_})" for n, k, c_ in zip(m["n"], m["m"], m["cls"])])
     res = agreement(rows, table, spec["simulation"]["squeal_level"], modes)

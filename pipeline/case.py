@@ -1,0 +1,114 @@
+"""One resolved case: the only place a case file is loaded and its contact point derived.
+
+``resolve_case(name)`` turns a case name -- a file ``pipeline/cases/<name>.toml`` or a curve's
+wheel ``<curve>/<wheel>`` (``pipeline.paths.case_file``) -- into a ``ResolvedCase``: the validated
+case, wheel and rail parameters, the running surfaces and their rigid contact point
+(``pipeline.profiles.ContactGeometry``), the friction and what the contact depends on.  Every
+stage reads it instead of loading the files again; it is memoised per process and per state
+of the files it read (case, wheel, rail, profiles: a changed file is read again), so a stage
+that asks for the same case several times (simulate: its contact and greens configurations;
+stability: the same and its own) derives the contact point once.
+"""
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from . import paths
+from .config import ConfigError
+
+
+@dataclass(frozen=True)
+class Friction:
+    """The case's friction: the law's name, its parameters and the coefficient mu the contact
+    tables are made for (today Coulomb friction, ``[friction] mu``)."""
+
+    law: str
+    params: dict
+    mu: float
+
+
+@dataclass(frozen=True)
+class ResolvedCase:
+    """A case ready for every stage (treat its dicts as read-only: they are shared).
+
+    name: the case name; case: the validated case file (``pipeline.schemas.CASE``); wheel, rail:
+    the validated wheel and rail parameters; geometry: the ContactGeometry (profiles in the track
+    frame, the rigid contact point); friction: ``Friction``; config: what the contact point and
+    contact depend on (the case's contact, kinematics, loading and time tables, the wheel's tyre,
+    flange and material, the rail parameters, the running surfaces); files: the files read."""
+
+    name: str
+    case: dict
+    wheel: dict
+    rail: dict
+    geometry: object
+    friction: Friction
+    config: dict
+    files: tuple = field(default=(), repr=False)
+
+    @property
+    def contact(self):
+        """The rigid contact point (``geometry.contact_point.RigidContact``)."""
+        return self.geometry.contact
+
+    @property
+    def case_file(self) -> Path:
+        return paths.case_file(self.name)
+
+
+_MEMO: dict = {}
+#: how many times each case was resolved from its files in this process (the memo's misses)
+RESOLVED: dict = {}
+
+
+def _stamp(files) -> tuple:
+    out = []
+    for f in files:
+        try:
+            s = os.stat(f)
+            out.append((str(f), s.st_mtime_ns, s.st_size))
+        except OSError:
+            out.append((str(f), None, None))
+    return tuple(out)
+
+
+def resolve_friction(c: dict) -> Friction:
+    """The friction of a validated case: Coulomb with the case's ``[friction] mu``."""
+    mu = float(c["friction"]["mu"])
+    return Friction("coulomb", {"mu": mu}, mu)
+
+
+def resolve_case(name: str) -> ResolvedCase:
+    """The ResolvedCase of ``name`` (memoised: the files are read and the contact point derived
+    once per process unless a file it read has changed since).  A missing case file, a malformed
+    name, bad parameters or a contact the profiles cannot make are a one-line ConfigError."""
+    try:
+        path = paths.case_file(name)
+    except ValueError as e:
+        raise ConfigError("command line", detail=f"--case {name}: {e}") from None
+    key = (name, str(path), str(paths.wheels()), str(paths.rails()))
+    hit = _MEMO.get(key)
+    if hit is not None and hit.files == _stamp(f for f, _, _ in hit.files):
+        return hit
+    why = paths.missing_case(name)
+    if why:
+        raise ConfigError(str(path), detail=why)
+    from .profiles import case_contact, profile_file
+
+    c, pw, pr, geo = case_contact(name)
+    RESOLVED[name] = RESOLVED.get(name, 0) + 1
+    used = [profile_file(geo.config[k]) for k in ("wheel_name", "rail_name") if geo.config.get(k)]
+    files = _stamp([path, paths.wheel_file(c["wheel"]), paths.rail_file(c["rail"]), *used])
+    config = {"case": {k: c[k] for k in ("contact", "kinematics", "loading", "time")},
+              "wheel": {k: pw[k] for k in ("tyre", "flange", "material")}, "rail": pr,
+              "running_surfaces": geo.config}
+    rc = ResolvedCase(name, c, pw, pr, geo, resolve_friction(c), config, files)
+    _MEMO[key] = rc
+    return rc
+
+
+def clear() -> None:
+    """Forget every resolved case (tests that change the environment's folders)."""
+    _MEMO.clear()
