@@ -29,17 +29,19 @@ def bogie_figure(info, points, rows):
     b = 0.5 * info.contact_spacing
     for axle, xa in (("a1", +a), ("a2", -a)):
         po, pi = by.get(axle + "o"), by.get(axle + "i")
-        if po is None or pi is None:
+        if po is None and pi is None:
             continue
-        shift = po.dy_wr                            # wheelset shift toward the outer rail
-        psi = po.angle_of_attack                    # yaw relative to the radial direction
+        shift = po.dy_wr if po is not None else -pi.dy_wr     # the wheelset's shift toward the outer rail
+        psi = (po if po is not None else pi).angle_of_attack  # yaw relative to the radial direction
         yc = -R + math.sqrt(R * R - xa * xa) + EXAGGERATE * shift
-        radial = math.atan2(xa, R)                  # the radial direction's angle at xa
+        radial = -math.atan2(xa, R)                 # heading of a radial wheelset at xa (the tangent)
         ang = radial + EXAGGERATE * psi
         for p, side in ((po, +1), (pi, -1)):
+            if p is None:
+                continue
             cx, cy = xa - side * b * math.sin(ang), yc + side * b * math.cos(ang)
             ax.plot([xa, cx], [yc, cy], color="0.2", lw=1.5)
-            ax.add_patch(plt.Rectangle((cx - 0.39, cy - 0.035), 0.78, 0.07, angle=math.degrees(-ang),
+            ax.add_patch(plt.Rectangle((cx - 0.39, cy - 0.035), 0.78, 0.07, angle=math.degrees(ang),
                                        rotation_point="center", color="0.55"))
             r_ = row.get(p.wheel, {})
             col = "crimson" if r_.get("squeals") else ("orange" if math.isfinite(r_.get("screen_sigma", math.nan))

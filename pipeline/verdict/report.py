@@ -52,7 +52,9 @@ def verdict_markdown(info: CurveInfo, points, rows: list[dict], wall: float) -> 
         elif fr is not None:
             stops.append(f"friction: {fr.note}")
         if dm is not None and dm.modes:
-            need = {lab: (f, z0, z) for lab, f, z0, z in dm.modes}
+            need = {}
+            for lab, f, z0, z in dm.modes:              # a mode damped twice: its first nominal, its last need
+                need[lab] = (f, need.get(lab, (f, z0, z))[1], z)
             txt = ", ".join(f"{lab} ({f:.0f} Hz) from {z0:.2g} to **{z:.2g}**" for lab, (f, z0, z) in need.items())
             ok = dm.confirm and not dm.confirm.get("squeals", True)
             stops.append(f"modal damping of {txt} ({dm.end}{'; the time loop confirms: quiet' if ok else ''})")

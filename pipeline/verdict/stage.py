@@ -106,8 +106,8 @@ def wheel_verdict(info: CurveInfo, p: WheelPoint, *, what_ifs: bool = True) -> d
             row["friction_what_if"] = fr
             dm = damping_what_if(models)
             final = {}
-            for lab, fm, z0, z in dm.modes:
-                final[lab] = (fm, z0, z)
+            for lab, fm, z0, z in dm.modes:          # a mode damped twice: its first nominal, its last need
+                final[lab] = (fm, final.get(lab, (fm, z0, z))[1], z)
             row["zeta_needed"] = "; ".join(f"{lab} {z:.2g}" for lab, (fm, z0, z) in final.items())
             row["damping_what_if"] = dm
     return row
