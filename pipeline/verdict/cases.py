@@ -21,21 +21,36 @@ DT = 36e-6          # s, the default case's time step (SPEC 6)
 DURATION = 8.0      # s of rolling at most (SPEC 6)
 
 
+def fit_schema(data: dict, schema: dict) -> dict:
+    """``data`` without the keys ``schema`` does not know and without None values (a key curving
+    fixes that the case schema does not have yet stays in verdict.csv only)."""
+    out = {}
+    for k, v in data.items():
+        if k not in schema or v is None:
+            continue
+        out[k] = fit_schema(v, schema[k]) if isinstance(v, dict) and isinstance(schema[k], dict) else v
+    return out
+
+
 def wheel_case(info: CurveInfo, p: WheelPoint) -> dict:
     """The case dict of one wheel (validated against the case schema: a ConfigError names the
-    curve and the key when the operating point leaves a case's allowed range)."""
+    curve and the key when the operating point leaves a case's allowed range).  The keys curving
+    fixes (``p.case``: contact point, friction, kinematics, preload = the tread contact's normal
+    load) when it gives them, else the operating point's values."""
     case = {
         "name": f"{info.name}/{p.wheel}",
         "description": (f"{info.vehicle} in curve {info.name} (R = {info.radius:g} m, {info.speed_kmh:g} km/h), "
                         f"wheel {p.wheel}: written by the curve stage"),
         "wheel": info.wheel, "rail": info.rail,
-        "contact": {"dy_wr": round(p.dy_wr, 9), "model": "point", "normal": "table"},
+        "contact": {"dy_wr": p.dy_wr, "model": "point", "normal": "table"},
         "friction": dict(info.friction),
-        "kinematics": {"gamma_y": round(p.gamma_y, 12), "gamma_x": round(p.gamma_x, 12),
-                       "speed": info.speed_kmh / 3.6},
-        "loading": {"preload": round(p.wheel_load, 3)},
+        "kinematics": {"gamma_y": p.gamma_y, "gamma_x": p.gamma_x, "speed": info.speed_kmh / 3.6},
+        "loading": {"preload": p.wheel_load},
         "time": {"dt": DT, "duration": DURATION},
     }
+    for k, v in (p.case or {}).items():
+        case[k] = dict(case.get(k, {}), **v) if isinstance(v, dict) else v
+    case = fit_schema(case, CASE)
     where = paths.case_file(case["name"])
     try:
         validate(case, CASE, str(where))

@@ -15,6 +15,7 @@ import math
 from typing import Any, NamedTuple
 
 WHEELS = ("a1o", "a1i", "a2o", "a2i")
+CONTACT_SPACING = 1.5    # m between the rolling circles of a standard-gauge wheelset (the plot's scale only)
 
 # the verdict's columns from curving, in verdict.csv's order
 POINT_KEYS = ("dy_wr", "angle_of_attack", "gamma_x", "gamma_y", "spin", "y_wheel", "y_rail", "contact_angle",
@@ -34,6 +35,7 @@ class WheelPoint(NamedTuple):
     wheel_load: float        # N
     contact_points: int      # 1, or 2 with flange contact
     nadal: float = math.nan  # lateral/vertical force ratio of a flange contact
+    case: dict | None = None  # the case-file keys curving fixes for this wheel (``case_fields()``), if any
 
 
 class CurveInfo(NamedTuple):
@@ -68,34 +70,25 @@ def wheel_points(solution) -> list[WheelPoint]:
         missing = [k for k, v in vals.items() if v is None]
         if missing:
             raise ValueError(f"curving's operating point of wheel {wid} lacks {missing}")
+        fields = getattr(w, "case_fields", None)
         out[str(wid)] = WheelPoint(str(wid), *(float(vals[k]) for k in POINT_KEYS[:-1]),
-                                   int(vals["contact_points"]), float(_get(w, "nadal", math.nan) or math.nan))
+                                   int(vals["contact_points"]), float(_get(w, "nadal", math.nan) or math.nan),
+                                   fields() if callable(fields) else None)
     return [out[w] for w in WHEELS if w in out]
 
 
 def curve_info(name: str, solution) -> CurveInfo:
     """The curve and vehicle data the verdict needs, from the solution's ``curve`` and ``vehicle``
-    (validated parameter dicts of the curve and vehicle files)."""
+    (the validated curve and vehicle files, ``pipeline.curve_schemas``: lengths in the units their
+    key names state)."""
+    from ..curving import curve_file, vehicle_file
+
     c, v = _get(solution, "curve"), _get(solution, "vehicle")
-
-    def pick(d, *keys, default=None):
-        for k in keys:
-            cur = d
-            for part in k.split("."):
-                cur = _get(cur, part) if cur is not None else None
-            if cur is not None:
-                return cur
-        return default
-
-    gauge = float(pick(c, "gauge", "track.gauge", default=1.435)) + float(pick(c, "gauge_widening",
-                                                                              "track.gauge_widening", default=0.0))
-    return CurveInfo(name=name, radius=float(pick(c, "radius", "track.radius")),
-                     speed_kmh=float(pick(c, "speed_kmh", "operation.speed_kmh", "speed")),
-                     cant=float(pick(c, "cant", "track.cant", default=0.0)), gauge=gauge,
-                     wheel=str(pick(v, "wheel", "wheels.wheel", default="c20")),
-                     rail=str(pick(c, "rail", "track.rail", default="bv50")),
-                     vehicle=str(pick(c, "vehicle", default=pick(v, "name", default="?"))),
-                     friction=dict(pick(c, "friction", default={"mu": 0.35})),
-                     wheelbase=float(pick(v, "bogie.wheelbase", "wheelbase", default=2.0)),
-                     contact_spacing=float(pick(v, "contact_spacing", "wheelset.contact_spacing", default=1.5)),
-                     sources=tuple(str(s) for s in (pick(solution, "sources", default=()) or ())))
+    mm = 1e-3
+    vehicle = str(c["vehicle"])
+    return CurveInfo(name=name, radius=float(c["radius_m"]), speed_kmh=float(c["speed_kmh"]),
+                     cant=mm * float(c.get("cant_mm") or 0.0),
+                     gauge=mm * (float(c["gauge_mm"]) + float(c.get("gauge_widening_mm") or 0.0)),
+                     wheel=str(_get(solution, "wheel") or v["wheel"]), rail=str(_get(solution, "rail") or c["rail"]),
+                     vehicle=vehicle, friction=dict(c["friction"]), wheelbase=float(v["bogie"]["wheelbase_m"]),
+                     contact_spacing=CONTACT_SPACING, sources=(str(curve_file(name)), str(vehicle_file(vehicle))))

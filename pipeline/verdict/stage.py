@@ -137,3 +137,18 @@ def run_curve(curve: str, *, progress_bar: bool = True, what_ifs: bool = True) -
              f"L_pA = {loud['L_pA']:.1f} dB(A)" if loud else "no wheel squeals", out / "verdict.md")
     return {"rows": rows, "info": info, "paths": {"csv": out / "verdict.csv", "md": out / "verdict.md",
                                                  "png": out / "bogie.png"}}
+
+
+def read_verdict(path) -> list[dict]:
+    """The rows of a verdict.csv (floats, NaN for empty cells; ``squeals`` bool; ``contact_points`` int)."""
+    import csv
+
+    text = {"wheel", "screen_mode", "mode", "zeta_needed", "wav"}
+    rows = []
+    with open(path, newline="", encoding="utf-8") as fh:
+        for r in csv.DictReader(fh):
+            row = {k: (v if k in text else (float(v) if v != "" else math.nan)) for k, v in r.items()}
+            row["squeals"] = bool(int(r["squeals"]))
+            row["contact_points"] = int(r["contact_points"])
+            rows.append(row)
+    return rows
