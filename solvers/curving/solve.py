@@ -1,0 +1,238 @@
+"""Solving the steady-curving equations (``model``) of a free wheelset or of the leading bogie,
+with flange contact as a unilateral constraint (an active set, as in Elkins & Gostling 1977).
+
+Unknowns, scaled to order one: the lateral shift y in mm (or, for a wheelset whose flange is
+in contact, the flange's normal force N_f in units of the static wheel load Q0, y being then
+the flange shift), the yaw psi in mrad, eps in 1e-3, the tread normal forces in Q0, and for
+the bogie the frame's y_b (mm) and psi_b (mrad).  Residuals: forces / Q0 and moments /
+(Q0 * 1 m).  MINPACK's hybrid method (``scipy.optimize.root``, 'hybr') from a start in pure
+rolling, then Newton steps with a finite-difference Jacobian until every residual is below
+TOL (relative to the wheel load).  Flange contact: a wheelset whose shift passes the flange
+shift y_f (``wheelrail.flange_shift``) is put in two-point contact (y = +-y_f, N_f unknown);
+one whose flange force comes out negative is released; repeated until the set is stable.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .creep import CreepLaw
+from .model import Profiles, Track, Vehicle, box_loads, wheel_contacts, wheelset_residual
+from .wheelrail import flange_shift
+
+TOL = 1e-10          # residuals / (Q0, Q0 * 1 m) required
+MAX_ACTIVE = 8       # active-set passes
+
+
+class CurvingError(RuntimeError):
+    """No equilibrium found (the message says where the iteration stopped)."""
+
+
+@dataclass
+class WheelsetState:
+    """A solved wheelset: shift y (m, outward), yaw psi (rad), eps, flange side (0, +1 outer,
+    -1 inner), its normal force N_f (N, 0 without), contacts (list of model.ContactResult, outer
+    first), suspension force and moment on it (N, N m) and its five residuals (N, N m)."""
+
+    x: float
+    y: float
+    psi: float
+    eps: float
+    flange: int
+    flange_force: float
+    contacts: list
+    F_susp: float = 0.0
+    M_susp: float = 0.0
+    residual: tuple = ()
+
+
+@dataclass
+class CurvingSolution:
+    """Wheelsets (leading first), frame shift and yaw (m, rad; NaN for a free wheelset), the
+    flange shift y_f (m), the largest residual relative to Q0 (forces N / Q0, moments N m /
+    (Q0 1 m)), the frame residuals and the number of active-set passes."""
+
+    wheelsets: list
+    frame_y: float
+    frame_psi: float
+    flange_shift: float
+    max_residual: float
+    frame_residual: tuple = ()
+    passes: int = 0
+    notes: list = field(default_factory=list)
+
+
+def _unpack_wheelset(q, flange, y_f, Q0):
+    """(y, psi, eps, loads outer, loads inner, N_f) of a wheelset's five scaled unknowns."""
+    y = flange * y_f if flange else 1e-3 * q[0]
+    Nf = Q0 * q[0] if flange else 0.0
+    lo, li = {"tread": Q0 * q[3]}, {"tread": Q0 * q[4]}
+    if flange > 0:
+        lo["flange"] = Nf
+    elif flange < 0:
+        li["flange"] = Nf
+    return y, 1e-3 * q[1], 1e-3 * q[2], lo, li, Nf
+
+
+def _wheelset(q, flange, y_f, x_i, prof, veh, trk, law):
+    y, psi, eps, lo, li, Nf = _unpack_wheelset(q, flange, y_f, veh.wheel_load)
+    contacts = (wheel_contacts(prof, veh, trk, law, +1, y, psi, eps, lo)
+                + wheel_contacts(prof, veh, trk, law, -1, y, psi, eps, li))
+    return WheelsetState(x_i, y, psi, eps, flange, Nf, contacts)
+
+
+def _suspension(ws: WheelsetState, veh: Vehicle, trk: Track, yb: float, pb: float):
+    R, x = trk.radius, ws.x
+    F = -2.0 * veh.ky * (ws.y - yb - x * pb - x * x / (2.0 * R))
+    M = -2.0 * veh.kx * veh.box_half_spacing ** 2 * (ws.psi - pb - x / R)
+    return F, M
+
+
+def _scale(r, Q0):
+    return np.array(r) / Q0
+
+
+def bogie_residual(z, flanges, y_f, prof, veh, trk, law, keep=None):
+    """The 12 scaled residuals of the bogie (two wheelsets, then the frame's force and moment)."""
+    yb, pb = 1e-3 * z[10], 1e-3 * z[11]
+    out, Ff, Mf, states = [], 0.0, 0.0, []
+    for i, x_i in enumerate((veh.semi_wheelbase, -veh.semi_wheelbase)):
+        ws = _wheelset(z[5 * i:5 * i + 5], flanges[i], y_f, x_i, prof, veh, trk, law)
+        ws.F_susp, ws.M_susp = _suspension(ws, veh, trk, yb, pb)
+        ws.residual = wheelset_residual(ws.contacts, veh, trk, ws.F_susp, ws.M_susp)
+        out += list(ws.residual)
+        Ff -= ws.F_susp
+        Mf -= ws.M_susp + x_i * ws.F_susp
+        states.append(ws)
+    a_unc, _ = trk.unbalanced()
+    m_s = 2.0 * veh.wheel_load / 9.81 - veh.wheelset_mass
+    Ff += 2.0 * m_s * a_unc
+    Mf -= veh.secondary_yaw * (pb - 0.5 * veh.bogie_spacing / trk.radius)
+    out += [Ff, Mf]
+    if keep is not None:
+        keep[:] = [states, yb, pb, (Ff, Mf)]
+    return _scale(out, veh.wheel_load)
+
+
+def wheelset_only_residual(z, flanges, y_f, prof, veh, trk, law, keep=None):
+    """The five scaled residuals of a free wheelset (no suspension forces)."""
+    ws = _wheelset(z, flanges[0], y_f, 0.0, prof, veh, trk, law)
+    ws.residual = wheelset_residual(ws.contacts, veh, trk, 0.0, 0.0)
+    if keep is not None:
+        keep[:] = [[ws], np.nan, np.nan, ()]
+    return _scale(ws.residual, veh.wheel_load)
+
+
+def _newton(fun, z, tol=TOL, max_iter=40):
+    """Polish a root with Newton steps (forward-difference Jacobian, step 1e-7 in scaled units)."""
+    r = fun(z)
+    for _ in range(max_iter):
+        if np.max(np.abs(r)) < tol:
+            break
+        J = np.empty((len(r), len(z)))
+        for k in range(len(z)):
+            dz = np.zeros_like(z)
+            dz[k] = 1e-7 * max(1.0, abs(z[k]))
+            J[:, k] = (fun(z + dz) - r) / dz[k]
+        step = np.linalg.lstsq(J, -r, rcond=None)[0]
+        t = 1.0
+        while t > 1e-3:
+            r_new = fun(z + t * step)
+            if np.max(np.abs(r_new)) < np.max(np.abs(r)):
+                break
+            t *= 0.5
+        z, r = z + t * step, r_new
+    return z, r
+
+
+def _start(veh, trk, lam0, n_ws, y_f):
+    y0 = 1e3 * min(veh.r0 * veh.rolling_circle / (lam0 * trk.radius), 0.8 * y_f)
+    per = [y0, 0.0, 0.0, 1.0, 1.0]
+    return np.array(per * n_ws + ([y0, 0.0] if n_ws == 2 else []), float)
+
+
+def _starts(veh, trk, lam0, n_ws, y_f):
+    """Starting points: pure rolling without flange contact; for the bogie also the leading
+    outer flange in contact with the frame at the chord position (a tight curve)."""
+    yield _start(veh, trk, lam0, n_ws, y_f), [0] * n_ws
+    if n_ws == 2:
+        a = veh.semi_wheelbase
+        pb = 0.25 * y_f / a
+        yield np.array([0.3, 1e3 * (a / trk.radius + pb), 0.0, 1.0, 1.0, 500 * y_f, 1e3 * (pb - a / trk.radius),
+                        0.0, 1.0, 1.0, 750 * y_f, 1e3 * pb]), [1, 0]
+
+
+def _safe(fun_of, flanges, y_f, prof, veh, trk, law):
+    """The residual function of one flange set; a trial point off the profiles gives a large
+    residual (so that the iteration backs off) instead of an exception."""
+    def fun(v):
+        try:
+            r = fun_of(v, flanges, y_f, prof, veh, trk, law)
+        except (ValueError, ZeroDivisionError, OverflowError):
+            return np.full(len(v), 1e3)
+        return np.where(np.isfinite(r), r, 1e3)
+    return fun
+
+
+def _equilibrium(fun_of, z, flanges, y_f, prof, veh, trk, law):
+    """Equilibrium for a given start: the flange's active set iterated to a stable set.
+    Returns (z, residual, flanges, [states, y_b, psi_b, frame residual], passes)."""
+    from scipy.optimize import root
+
+    seen = {tuple(flanges)}
+    for passes in range(1, MAX_ACTIVE + 1):
+        fun = _safe(fun_of, flanges, y_f, prof, veh, trk, law)
+        sol = root(fun, z, method="hybr", options={"xtol": 1e-13, "maxfev": 4000, "factor": 0.5})
+        z, r = _newton(fun, sol.x)
+        keep = []
+        try:
+            fun_of(z, flanges, y_f, prof, veh, trk, law, keep)
+        except ValueError:
+            return z, np.full(len(z), np.inf), flanges, None, passes
+        change = False
+        for i, ws in enumerate(keep[0]):
+            if ws.flange == 0 and abs(ws.y) > y_f:
+                flanges[i], z[5 * i], change = (1 if ws.y > 0 else -1), 0.2, True
+            elif ws.flange != 0 and ws.flange_force < 0.0:
+                flanges[i], z[5 * i], change = 0, 1e3 * ws.y * 0.98, True
+        if not change:
+            return z, r, flanges, keep, passes
+        if tuple(flanges) in seen:  # cycling between flange sets: no admissible equilibrium from here
+            return z, np.full(len(z), np.inf), flanges, None, passes
+        seen.add(tuple(flanges))
+    return z, np.full(len(z), np.inf), flanges, None, MAX_ACTIVE
+
+
+def solve(prof: Profiles, veh: Vehicle, trk: Track, law: CreepLaw, bogie: bool = True,
+          lam0: float = 0.1, steps: int = 8) -> CurvingSolution:
+    """Steady curving of the leading bogie (bogie=True) or of one free wheelset.  Started in
+    pure rolling (conicity lam0); when that does not converge, continued in curvature 1/R
+    from a ten times larger radius in ``steps`` steps, each started from the last."""
+    import dataclasses
+
+    y_f = flange_shift(prof.wheel, prof.rail, trk.c, prof.edge)
+    fun_of = bogie_residual if bogie else wheelset_only_residual
+    n_ws = 2 if bogie else 1
+    for z0, fl0 in _starts(veh, trk, lam0, n_ws, y_f):
+        z, r, flanges, keep, passes = _equilibrium(fun_of, z0, fl0, y_f, prof, veh, trk, law)
+        if keep is not None and np.max(np.abs(r)) <= 1e-8:
+            break
+    if keep is None or np.max(np.abs(r)) > 1e-8:
+        R_far = 10.0 * trk.radius
+        curv = np.linspace(1.0 / R_far, 1.0 / trk.radius, steps + 1)
+        far = dataclasses.replace(trk, radius=R_far)
+        z, flanges = _start(veh, far, lam0, n_ws, y_f), [0] * n_ws
+        for k in curv:
+            z, r, flanges, keep, passes = _equilibrium(fun_of, z, flanges, y_f, prof, veh,
+                                                       dataclasses.replace(trk, radius=1.0 / k), law)
+            if keep is None:
+                break
+    res = float(np.max(np.abs(r)))
+    if keep is None or not np.isfinite(res) or res > 1e-8:
+        raise CurvingError(f"steady curving did not converge (largest residual {res:.2e} of the wheel load; "
+                           f"R = {trk.radius:g} m, flange set {flanges})")
+    return CurvingSolution(keep[0], keep[1], keep[2], y_f, res, keep[3], passes)
+
+
+__all__ = ["CurvingError", "CurvingSolution", "WheelsetState", "solve", "box_loads", "TOL"]

@@ -1,0 +1,142 @@
+"""The contact points of one wheel on its rail for a given lateral position, tread and flange
+(SPEC 2; the rigid contact of ``geometry.contact_point``, refined to machine precision and
+split into the tread zone and the flange zone, so that a flange contact is a second point).
+
+Frames as in ``geometry.contact_point``: the wheel profile z_W(y^W) (+ field side, flange at
+negative y^W) over a rail turned by its inclination into the track frame (``TrackRail``), the
+wheel's rolling circle at track position ``shift`` over the rail centre, and the vertical
+separation sep(y^W) = -z_W(y^W) - z_T(y^W + shift).  The wheelset does not roll (the two
+wheels are lowered onto their rails independently; the roll angle, |r_o - r_i| / (2 l), tilts
+a contact by less than a degree).
+
+Zones: the flange zone is the part of the wheel profile on the flange side of the first point,
+counted from the tread, where the wheel's slope reaches ``FLANGE_SLOPE`` (45 degrees, the
+limit of ``geometry.contact_point.FLANGE_ANGLE_DEG``); the tread zone is the rest.  The lowest
+point of each zone is found on the profile grid and refined by Newton's method on
+sep'(y) = 0 (sep'' from the splines' curvatures), so that it is a smooth function of the shift.
+The wheel touches in its tread zone alone while the flange zone's lowest point is higher; the
+shift where both are equally low is the flange (two-point) contact (``flange_shift``).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from geometry.contact_point import FLANGE_ANGLE_DEG
+
+FLANGE_SLOPE = math.tan(math.radians(FLANGE_ANGLE_DEG))
+
+
+@dataclass(frozen=True)
+class ContactPoint:
+    """One contact point of a wheel (m, rad, 1/m): y_wheel y^W, y_track Y (track frame over the
+    rail centre), y_rail y^R (rail frame), angle (contact angle, + rising toward the field side),
+    z_wheel (r - r0), sep (separation there, m), B (relative lateral curvature of the gap in the
+    contact plane), zone ('tread' or 'flange')."""
+
+    y_wheel: float
+    y_track: float
+    y_rail: float
+    angle: float
+    z_wheel: float
+    sep: float
+    B: float
+    zone: str
+
+
+def flange_edge(wheel) -> float:
+    """y^W where the flange zone begins: the first grid point from the rolling circle (y^W = 0,
+    on the tread) toward the flange with slope <= -FLANGE_SLOPE."""
+    y = wheel.y
+    s = np.asarray(wheel.slope(y))
+    i0 = int(np.argmin(np.abs(y)))  # the rolling circle
+    steep = np.flatnonzero(s[: i0 + 1] <= -FLANGE_SLOPE)
+    if steep.size == 0:
+        return float(y[0]) - 1.0  # no flange on this profile
+    return float(y[steep[-1]])
+
+
+_RAIL_Z: dict = {}
+
+
+def _rail_points(rail_t):
+    """The rail's heights at its own points (track frame), memoised per TrackRail."""
+    key = id(rail_t)
+    hit = _RAIL_Z.get(key)
+    if hit is None or hit[0] is not rail_t:
+        hit = _RAIL_Z[key] = (rail_t, np.asarray(rail_t(rail_t.y), float))
+    return hit[1]
+
+
+def _sep(wheel, rail_t, shift, y):
+    s = -np.asarray(wheel(y)) - np.asarray(rail_t(np.asarray(y) + shift))
+    return np.where(np.isfinite(s), s, np.inf)
+
+
+def _refine(wheel, rail_t, shift, y, lo, hi):
+    """Newton on sep'(y) = 0 from y, kept inside [lo, hi] (m)."""
+    for _ in range(30):
+        d1 = -float(wheel.slope(y)) - float(rail_t.slope(y + shift))
+        d2 = -float(wheel.curvature(y)) - float(rail_t.curvature(y + shift))
+        if not (np.isfinite(d1) and np.isfinite(d2)) or d2 <= 0.0:
+            break
+        step = d1 / d2
+        y_new = min(max(y - step, lo), hi)
+        if abs(y_new - y) < 1e-14:
+            y = y_new
+            break
+        y = y_new
+    return y
+
+
+def zone_point(wheel, rail_t, shift: float, zone: str, edge: float) -> ContactPoint | None:
+    """The lowest point of the tread or flange zone at this shift, or None when the zone does
+    not face the rail.  The search on the grid interpolates the rail linearly between its
+    points (``rail_t.y``); the refinement uses the splines."""
+    y = wheel.y
+    mask = y > edge if zone == "tread" else y <= edge
+    if not mask.any():
+        return None
+    ys = y[mask]
+    rz = _rail_points(rail_t)
+    sep = -wheel.z[mask] - np.interp(ys + shift, rail_t.y, rz, left=np.nan, right=np.nan)
+    sep = np.where(np.isfinite(sep), sep, np.inf)
+    if not np.isfinite(sep).any():
+        return None
+    i = int(np.argmin(sep))
+    h = y[1] - y[0]
+    lo, hi = (edge, y[-1]) if zone == "tread" else (y[0], edge)
+    yc = _refine(wheel, rail_t, shift, float(ys[i]), max(lo, ys[i] - 2 * h), min(hi, ys[i] + 2 * h))
+    Y = yc + shift
+    slope = float(rail_t.slope(Y))
+    angle = math.atan(slope)
+    d2 = -float(wheel.curvature(yc)) - float(rail_t.curvature(Y))
+    return ContactPoint(y_wheel=yc, y_track=Y, y_rail=rail_t.to_rail(Y), angle=angle, z_wheel=float(wheel(yc)),
+                        sep=float(_sep(wheel, rail_t, shift, yc)), B=0.5 * d2 * math.cos(angle) ** 3, zone=zone)
+
+
+def flange_gap(wheel, rail_t, shift: float, edge: float) -> float:
+    """Height (m) of the flange zone's lowest point above the tread zone's: > 0 while the
+    flange is clear, 0 in two-point contact, < 0 when the flange would carry the wheel."""
+    t = zone_point(wheel, rail_t, shift, "tread", edge)
+    f = zone_point(wheel, rail_t, shift, "flange", edge)
+    if t is None or f is None:
+        return math.inf
+    return f.sep - t.sep
+
+
+def flange_shift(wheel, rail_t, c: float, edge: float, span: float = 0.04) -> float:
+    """Wheelset shift y (m, toward this wheel's field side) at which the flange touches: the
+    root of flange_gap(c + y) = 0 on [0, span] (brentq)."""
+    from scipy.optimize import brentq
+
+    g = lambda y: flange_gap(wheel, rail_t, c + y, edge)  # noqa: E731
+    ys = np.linspace(-0.01, span, 101)
+    gs = np.array([g(v) for v in ys])
+    k = np.flatnonzero((gs[:-1] > 0) & (gs[1:] <= 0))
+    if k.size == 0:
+        raise ValueError(f"no flange contact within {1e3 * span:.0f} mm of shift (rolling circle at "
+                         f"{1e3 * c:+.1f} mm from the rail centre)")
+    return float(brentq(g, ys[k[0]], ys[k[0] + 1], xtol=1e-13, rtol=1e-13))
