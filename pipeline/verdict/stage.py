@@ -36,11 +36,25 @@ UNITS = {"dy_wr": "m", "angle_of_attack": "rad", "spin": "1/m", "y_wheel": "m", 
          "L_W": "dB re 1 pW", "L_pA": "dB(A) re 20 uPa"}
 
 
+def one_line(e):
+    """A ConfigError with its problems on one line (file: key = value: expected range; ...)."""
+    from ..config import ConfigError
+
+    if not e.errors:
+        return e
+    return ConfigError(e.source, detail="; ".join(f"{k} = {v!r}: expected {a}" for k, v, a in e.errors))
+
+
 def solve(curve: str):
-    """The curving solution of ``curve`` (pipeline.curving, ConfigError on a bad curve or vehicle file)."""
+    """The curving solution of ``curve`` (pipeline.curving; a bad curve or vehicle file: a
+    ConfigError in one line)."""
+    from ..config import ConfigError
     from ..curving import solve_curve
 
-    return solve_curve(curve)
+    try:
+        return solve_curve(curve)
+    except ConfigError as e:
+        raise one_line(e) from None
 
 
 def run_stages(name: str, stages) -> None:
