@@ -10,7 +10,9 @@ rail waves into the causal kernels the time loop uses, for one case.
   but its exact fast form, the recursive modal filters (f_r, modal mass, zeta,
   the shapes at the contact point): the correction changes nothing there.
 * Rail: the moving Green's function g_mov[k] = g^R(v k dt, k dt) at the case's
-  rail-head point, from the waveguide wave table on Kropp's grid, shared by every case with
+  rail-head point (a node of the rail file's contact.y within 1 mm, else the point itself from
+  the running surface's wave table, pipeline/rail_surface.py), from the waveguide wave table
+  on Kropp's grid, shared by every case with
   the same rail, |y^R|, speed and time step through the cache build/rails/<rail>/moving/
   (pipeline/rail_kernel.py; built in seconds by solvers/moving_kernel.py).  The rail
   model is valid to 6.5 kHz; above, the receptance is rolled off to zero by
@@ -72,28 +74,31 @@ def greens_inputs(case: str):
     return c, pw, pr, modes, (yw, yr, geo.contact.y_rail), cfg
 
 
-RAIL_POINT_TOL = 1e-3  # m: the rail model's head node may lie this far from the contact point y^R
+RAIL_POINT_TOL = 1e-3  # m: a contact point this close to a node of the rail file's contact.y list takes that node
 
 
 def rail_point(name: str, pr: dict, y_r: float, where: str = "") -> float:
-    """The rail model's loaded head point for the contact point y^R of the
-    profiles: on the same side of the head as y^R (the vertical-lateral cross
-    receptance changes sign with the side), at the node |y| of the rail file's
-    ``contact.y`` list (mesh nodes of the rail section) nearest to |y^R|,
-    within RAIL_POINT_TOL (the rail's receptances change little with the
-    lateral position on the head, thesis section 4.2.2); a one-line
-    ConfigError otherwise (``where``: the case and offset it names)."""
+    """The rail model's loaded head point for the contact point y^R of the profiles: the node of the
+    rail file's ``contact.y`` list (mesh nodes of the rail section) on the same side of the head as
+    y^R (the vertical-lateral cross receptance changes sign with the side) when |y^R| is within
+    RAIL_POINT_TOL of one (the rail's receptances change little with the lateral position on the
+    head, thesis section 4.2.2; the numbers of before for the listed points), else y^R itself: any
+    point of the running surface has its receptances from the surface wave table
+    (``pipeline.rail_surface``).  A point off the running surface (beyond the head's widest point)
+    is a one-line ConfigError (``where``: the case and offset it names)."""
     from .config import ConfigError
 
     ys = np.unique(np.abs(np.asarray(pr["contact"]["y"], float)))
-    i = int(np.argmin(np.abs(ys - abs(y_r))))
-    if abs(ys[i] - abs(y_r)) > RAIL_POINT_TOL:
+    if len(ys):
+        i = int(np.argmin(np.abs(ys - abs(y_r))))
+        if abs(ys[i] - abs(y_r)) <= RAIL_POINT_TOL:
+            return float(np.copysign(ys[i], y_r))
+    half = 0.5 * pr["head"]["width"]
+    if abs(y_r) > half:
         raise ConfigError(str(paths.rail_file(name)), detail=(
-            (f"{where}: " if where else "") + f"the rail model has no receptance at the contact point y^R = "
-            f"{1e3 * y_r:+.3f} mm of the profiles, {1e3 * abs(ys[i] - abs(y_r)):.3f} mm from the nearest rail "
-            f"head node |y| = {1e3 * ys[i]:.3f} mm of contact.y (allowed {1e3 * RAIL_POINT_TOL:.1f} mm): "
-            f"add {y_r:.5f} to contact.y and rebuild the rail (make rail RAIL={name})"))
-    return float(np.copysign(ys[i], y_r))
+            (f"{where}: " if where else "") + f"the contact point y^R = {1e3 * y_r:+.3f} mm of the profiles is "
+            f"off the rail head's running surface (|y| <= {1e3 * half:.1f} mm, head.width / 2)"))
+    return float(y_r)
 
 
 def wheel_greens(pw: dict, modes: dict, y_w: float, dt: float) -> dict:
@@ -126,12 +131,16 @@ def wheel_greens(pw: dict, modes: dict, y_w: float, dt: float) -> dict:
 
 def rail_greens(pr: dict, rail_hash: str, y_r: float, v: float, dt: float) -> tuple[dict, bool]:
     """The moving rail kernel and its companions at y_r, from the shared cache
-    build/rails/<rail>/moving/ or built there (pipeline/rail_kernel.py); also whether it came
-    from the cache.  rail_hash: the rail parameters' configuration hash (rail.npz's)."""
+    build/rails/<rail>/moving/ or built there (pipeline/rail_kernel.py at the rail file's listed
+    points, pipeline/rail_surface.py at any other point of the running surface); also whether it
+    came from the cache.  rail_hash: the rail parameters' configuration hash (rail.npz's)."""
     from .rail_kernel import rail_kernel
+    from .rail_surface import surface_kernel
 
     grid = {"n_t": RAIL_NT, "n_lags": RAIL_LAGS, "f_max": RAIL_F_MAX, "f_taper": RAIL_F_TAPER}
-    return rail_kernel(pr, rail_hash, y_r, v, dt, grid, rail_taper)
+    if np.any(np.abs(np.abs(np.asarray(pr["contact"]["y"], float)) - abs(y_r)) < 1e-12):
+        return rail_kernel(pr, rail_hash, y_r, v, dt, grid, rail_taper)  # a listed point: its own model
+    return surface_kernel(pr, rail_hash, y_r, v, dt, grid, rail_taper)   # any other: the surface table
 
 
 def rail_taper(f) -> np.ndarray:
