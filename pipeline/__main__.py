@@ -17,6 +17,18 @@ NUMBA_STAGES = {name for name, st in STAGES.items() if st.numba}
 
 
 def main(argv=None) -> int:
+    """The CLI; Ctrl-C (KeyboardInterrupt) anywhere ends it with one line and exit code 130 (the
+    artifacts written before are whole: every write is atomic)."""
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:
+        stage = next((a for a in (sys.argv[1:] if argv is None else argv) if a in STAGES), "the stage")
+        print(f"interrupted: {stage} stopped; the artifacts it had finished are kept, nothing half-written",
+              file=sys.stderr)
+        return 130
+
+
+def _main(argv=None) -> int:
     ap = argparse.ArgumentParser(prog="python -m pipeline", description="Curve squeal pipeline stages.",
                                  formatter_class=argparse.RawDescriptionHelpFormatter,
                                  epilog="stages:\n" + "\n".join(f"  {k:8s} {v.help}" for k, v in STAGES.items()))
@@ -65,20 +77,9 @@ def main(argv=None) -> int:
 
     try:
         if args.stage == "check":
-            from .config import load
-            from .schemas import CASE
-            from .wheel_stage import load_wheel
+            from .check import run_check
 
-            load_wheel(args.wheel)
-            from .rail_stage import load_rail_params
-
-            load_rail_params(args.rail)
-            case_path = paths.case_file(args.case)
-            why = paths.missing_case(args.case)
-            if why:
-                raise ConfigError(str(case_path), detail=why)
-            load(case_path, CASE)
-            print(f"wheel {args.wheel}, rail {args.rail} and case {args.case}: configuration OK")
+            print("\n".join(run_check(args.case, args.wheel, args.rail)))
         elif args.stage == "curve":
             from .verdict.stage import run_curve
 

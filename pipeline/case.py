@@ -19,14 +19,7 @@ from . import paths
 from .config import ConfigError
 
 
-@dataclass(frozen=True)
-class Friction:
-    """The case's friction: the law's name, its parameters and the coefficient mu the contact
-    tables are made for (today Coulomb friction, ``[friction] mu``)."""
-
-    law: str
-    params: dict
-    mu: float
+from .friction import Friction  # noqa: E402  (the resolved [friction]: law, params, preset, mu)
 
 
 @dataclass(frozen=True)
@@ -74,10 +67,13 @@ def _stamp(files) -> tuple:
     return tuple(out)
 
 
-def resolve_friction(c: dict) -> Friction:
-    """The friction of a validated case: Coulomb with the case's ``[friction] mu``."""
-    mu = float(c["friction"]["mu"])
-    return Friction("coulomb", {"mu": mu}, mu)
+def resolve_friction(c: dict, name: str | None = None) -> Friction:
+    """The friction of a validated case (``pipeline.friction.case_friction``: its law and
+    parameters, or preset; a one-line ConfigError naming the case file when they do not go
+    together)."""
+    from .friction import case_friction
+
+    return case_friction(c, name)
 
 
 def resolve_case(name: str) -> ResolvedCase:
@@ -104,7 +100,7 @@ def resolve_case(name: str) -> ResolvedCase:
     config = {"case": {k: c[k] for k in ("contact", "kinematics", "loading", "time")},
               "wheel": {k: pw[k] for k in ("tyre", "flange", "material")}, "rail": pr,
               "running_surfaces": geo.config}
-    rc = ResolvedCase(name, c, pw, pr, geo, resolve_friction(c), config, files)
+    rc = ResolvedCase(name, c, pw, pr, geo, resolve_friction(c, name), config, files)
     _MEMO[key] = rc
     return rc
 

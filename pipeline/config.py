@@ -109,12 +109,14 @@ class ConfigError(ValueError):
         for key, value, allowed in self.errors:
             if value is MISSING:
                 lines.append(f"  {key}: {allowed}")
-            elif allowed.startswith("unknown key"):
+            elif allowed.startswith("unknown key") or allowed.startswith("not ") or allowed.startswith("no "):
                 lines.append(f"  {key} = {_short_repr(value)}: {allowed}")
             else:
                 lines.append(
                     f"  {key} = {_short_repr(value)} ({_toml_type(value)}): expected {allowed}"
                 )
+        if n == 1:                  # one problem: one line
+            return f"{self.source}: {lines[1].strip()}"
         return "\n".join(lines)
 
     def __reduce__(self):

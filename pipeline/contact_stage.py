@@ -32,13 +32,11 @@ GROW, MAX_TRIES = 1.4, 5  # potential area: growth per retry, retries
 
 
 def contact_setup(case: str) -> tuple[dict, dict, dict, object, dict]:
-    """(case, wheel, rail, ContactGeometry, resolved config) of a case (``pipeline.case.resolve_case``;
-    the friction's configuration from ``pipeline.friction``)."""
+    """(case, wheel, rail, ContactGeometry, resolved config) of a case (``pipeline.case.resolve_case``)."""
     from .case import resolve_case
-    from .friction import case_friction
 
     rc = resolve_case(case)
-    cfg = dict(rc.config, friction=case_friction(rc.case).config(), dy=DY)
+    cfg = dict(rc.config, friction=rc.friction.config(), dy=DY)
     return rc.case, rc.wheel, rc.rail, rc.geometry, cfg
 
 
@@ -141,7 +139,11 @@ def build_contact(c: dict, pw: dict, geo, n_table: int = 41, frictions=None, cur
 def run_contact(case: str) -> dict:
     from .friction import contact_curve_cache
 
+    from .check import over_radial_note
+
     c, pw, pr, geo, cfg = contact_setup(case)
+    if over_radial_note(c):
+        log.warning("note: case %s: %s", case, over_radial_note(c))
     t0 = time.perf_counter()
     cache = contact_curve_cache(case)
     arrays = build_contact(c, pw, geo, curve=cache)

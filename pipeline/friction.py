@@ -18,7 +18,7 @@ import functools
 import hashlib
 import logging
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -33,20 +33,25 @@ CURVE_KIND = "friction-curve"
 
 @dataclass(frozen=True)
 class Friction:
-    """A resolved friction law: ``name`` ('coulomb', ...), ``params`` ((name, value), ... sorted)
-    in the units of the registry (``solvers.contact.friction_laws.LAWS``), ``preset``: the
-    friction-modifier preset it came from (or None)."""
-    name: str = "coulomb"
-    params: tuple = ()
+    """A resolved friction law (``ResolvedCase.friction``): ``law`` ('coulomb', ...), ``params``
+    {name: value} in the units of the registry (``solvers.contact.friction_laws.LAWS``),
+    ``preset``: the friction-modifier preset it came from (or None); ``mu``: the coefficient
+    (``name`` is ``law``, as a ``FrictionLaw`` names itself)."""
+    law: str = "coulomb"
+    params: dict = field(default_factory=dict)
     preset: str | None = None
 
     @classmethod
     def coulomb(cls, mu: float) -> "Friction":
-        return cls("coulomb", (("mu", float(mu)),))
+        return cls("coulomb", {"mu": float(mu)})
 
     @classmethod
     def of(cls, name: str, params: dict, preset: str | None = None) -> "Friction":
-        return cls(name, tuple(sorted((k, float(v)) for k, v in params.items())), preset)
+        return cls(name, {k: float(v) for k, v in sorted(params.items())}, preset)
+
+    @property
+    def name(self) -> str:
+        return self.law
 
     @property
     def label(self) -> str:
@@ -58,12 +63,11 @@ class Friction:
     def mu(self) -> float:
         """The Coulomb coefficient; for another law its local coefficient at zero slip speed
         (the static coefficient)."""
-        p = dict(self.params)
-        if self.name == "coulomb":
-            return float(p["mu"])
-        return float(np.asarray(self.law().mu(np.zeros(1)), float).ravel()[0])
+        if self.law == "coulomb":
+            return float(self.params["mu"])
+        return float(self.solver_law().mu_static)
 
-    def law(self):
+    def solver_law(self):
         """The solver's argument: the float mu for the Coulomb law (today's call of ``rf_curve``,
         bit for bit), else the registry's ``FrictionLaw``."""
         if self.name == "coulomb":
@@ -71,6 +75,13 @@ class Friction:
         from solvers.contact.friction_laws import get_friction_law
 
         return get_friction_law(self.name, **dict(self.params))
+
+    @property
+    def text(self) -> str:
+        """For people: ``mu = 0.35`` (Coulomb), else the law with its parameters (and preset)."""
+        if self.name == "coulomb":
+            return f"mu = {dict(self.params)['mu']:g}"
+        return self.label + (f" (preset {self.preset})" if self.preset else "")
 
     def config(self) -> dict:
         """JSON-able form, for configuration hashes."""
@@ -82,9 +93,71 @@ def as_friction(f) -> Friction:
     return f if isinstance(f, Friction) else Friction.coulomb(float(f))
 
 
-def case_friction(c: dict) -> Friction:
-    """The resolved friction of a validated case dict (its ``[friction]`` table)."""
-    return Friction.coulomb(c["friction"]["mu"])
+def friction_schema() -> dict:
+    """The case file's ``[friction]`` table: ``law`` (a name of the registry
+    ``solvers.contact.friction_laws.LAWS``; default "coulomb"), every law's parameters with their
+    units and ranges from the registry (only the chosen law's may be given), or ``preset`` (a name
+    of ``PRESETS``: the law and its parameters together).  ``resolve_friction`` checks which keys
+    go together."""
+    from solvers.contact.friction_laws import LAWS, PRESETS
+
+    from .config import Field
+
+    out = {"law": Field(str, choices=list(LAWS), default=None,
+                        doc='friction law (default "coulomb"; its parameters are the other keys)'),
+           "preset": Field(str, choices=list(PRESETS), default=None,
+                           doc="a friction preset (law and parameters with their source) instead of law + parameters")}
+    for law in LAWS.values():
+        for q in law.params:
+            if q.name in out:
+                continue
+            out[q.name] = Field(float, unit=q.unit if q.unit != "-" else "", min=q.lo, max=q.hi,
+                                min_inclusive=not q.lo_open, max_inclusive=not q.hi_open, default=None,
+                                doc=f"{q.doc} (law {', '.join(k for k, w in LAWS.items() if q.name in [x.name for x in w.params])})")
+    return out
+
+
+def resolve_friction(f: dict, source: str) -> Friction:
+    """The Friction of a validated ``[friction]`` table (``friction_schema``); ConfigError (one
+    line, naming ``source``, the key, its value and what is allowed) when its keys do not go
+    together: a parameter of another law, a missing parameter, a preset with a law or parameters,
+    or values the law refuses together (its coefficient leaving 0 < mu <= 1)."""
+    from solvers.contact.friction_laws import LAWS, PRESETS, get_friction_law, preset
+
+    from .config import MISSING, ConfigError
+
+    given = {k: v for k, v in f.items() if k not in ("law", "preset") and v is not None}
+    if f.get("preset") is not None:
+        name = f["preset"]
+        extra = (["law"] if f.get("law") is not None else []) + sorted(given)
+        if extra:
+            k = extra[0]
+            raise ConfigError(source, [(f"friction.{k}", f[k], f"no {k} with friction.preset = {name!r} (the preset "
+                                        f"sets law {PRESETS[name]['law']!r} and its parameters); remove one of them")])
+        law = preset(name)
+        return Friction.of(law.name, law.params, name)
+    name = f.get("law") or "coulomb"
+    known = [q.name for q in LAWS[name].params]
+    for k in sorted(given):
+        if k not in known:
+            raise ConfigError(source, [(f"friction.{k}", given[k], f"not a parameter of friction law {name!r} "
+                                        f"(its parameters: {', '.join(known)}; set friction.law for another law)")])
+    for q in LAWS[name].params:
+        if q.default is None and q.name not in given:
+            raise ConfigError(source, [(f"friction.{q.name}", MISSING, f"required key is missing for friction "
+                                        f"law {name!r} (expected a float{' in ' + q.unit if q.unit != '-' else ''}, "
+                                        f"{q.range_text()})")])
+    try:
+        law = get_friction_law(name, **given)
+    except ValueError as e:
+        raise ConfigError(source, [("friction", given, f"not accepted together: {e}")]) from None
+    return Friction.of(law.name, law.params)
+
+
+def case_friction(c: dict, case: str | None = None) -> Friction:
+    """The resolved friction of a validated case dict (its ``[friction]`` table); messages name
+    the file of ``case`` (default: the case's ``name``)."""
+    return resolve_friction(c["friction"], str(paths.case_file(case or c["name"])))
 
 
 # --------------------------------------------------------------------------------------------
@@ -95,7 +168,7 @@ def compute_curve(p3, dx: float, dy: float, v: float, friction: Friction, E: flo
     """One curve, computed (no cache): ``rf_curve``'s fields as arrays (numeric fields only)."""
     from solvers.contact.friction import rf_curve
 
-    curve = rf_curve(p3, dx, dy, v, friction.law(), E, nu)
+    curve = rf_curve(p3, dx, dy, v, friction.solver_law(), E, nu)
     out = {}
     for k, val in curve._asdict().items():
         a = np.asarray(val)

@@ -66,7 +66,9 @@ def greens_inputs(case: str):
     modes, mprov = artifacts.load_npz(paths.wheel_dir(c["wheel"]) / "modes.npz", "wheel-modes", pw,
                                       make_target=f"modes WHEEL={c['wheel']}")
     # "rail": the rail parameters' hash, the one rail.npz carries (the rail stage saves with them)
-    cfg = {"case": {k: c[k] for k in ("contact", "kinematics", "time")}, "wheel_modes": mprov["config_hash"],
+    case_cfg = {k: c[k] for k in ("contact", "kinematics", "time")}
+    case_cfg["kinematics"] = {k: v for k, v in case_cfg["kinematics"].items() if k != "spin"}   # issue 26: not an input here
+    cfg = {"case": case_cfg, "wheel_modes": mprov["config_hash"],
            "running_surfaces": geo.config,
            "rail": config_hash(pr), "rail_nt": RAIL_NT, "rail_lags": RAIL_LAGS, "rail_f_max": RAIL_F_MAX,
            "rail_f_taper": RAIL_F_TAPER, "wheel_band_limit": WHEEL_BAND_LIMIT, "wheel_decay_db": WHEEL_DECAY_DB,

@@ -198,8 +198,12 @@ def run_report(case: str) -> str:
     figdir.mkdir(parents=True, exist_ok=True)
     sections = [f"# Curve squeal report: case `{case}`\n\n{c['description']}\n\n"
                 f"Case file `{paths.shown(cpath)}`: wheel `{c['wheel']}`, rail `{c['rail']}`, dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm, "
-                f"mu = {c['friction']['mu']}, gamma_y = {c['kinematics']['gamma_y']}, v = {3.6 * c['kinematics']['speed']:.0f} km/h.\n",
+                f"{rc.friction.text}, gamma_y = {c['kinematics']['gamma_y']}, v = {3.6 * c['kinematics']['speed']:.0f} km/h.\n",
                 wheel_section(c["wheel"], figdir), rail_section(c["rail"], figdir)]
+    from .check import over_radial_note
+
+    if over_radial_note(c):
+        sections.insert(1, f"**Note.** {over_radial_note(c)}.\n")
     from .contact_stage import contact_inputs
 
     sections.append(contact_section(case, contact_inputs(case)[3], figdir))

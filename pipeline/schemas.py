@@ -7,6 +7,7 @@ unit mistakes (mm typed for m, MPa for Pa).
 from __future__ import annotations
 
 from .config import Field, ListOf
+from .friction import friction_schema
 
 L = dict(kind=float, unit="m")
 
@@ -127,13 +128,16 @@ CASE = {
         "normal": Field(str, choices=["table", "norm"], default="table",
                         doc="normal contact from a NORM table over the approach, or NORM every step"),
     },
-    "friction": {
-        "mu": Field(float, min=0.0, max=1.0, min_inclusive=False, doc="Coulomb friction coefficient"),
-    },
+    "friction": friction_schema(),      # law (default "coulomb") and its parameters, or a preset
     "kinematics": {
         "gamma_y": Field(float, min=-0.2, max=0.2, doc="lateral creepage"),
         "gamma_x": Field(float, min=-0.2, max=0.2, default=0.0, doc="longitudinal creepage"),
         "speed": Field(float, unit="m/s", min=0.5, max=60.0, doc="rolling speed v"),
+        # issue 26 (point contact): spin beside the creepages
+        "spin": Field(float, unit="1/m", min=-20.0, max=20.0, default=0.0,
+                      doc="spin creepage phi (rigid slip w = (gamma_x - phi y, gamma_y + phi x) v; ~ -sin(contact "
+                          "angle) / wheel radius); the point contact takes it as equivalent creepages from "
+                          "Kalker's linear theory (solvers.contact.spin), Kalker's TANG as it is"),
     },
     "loading": {
         "preload": Field(float, unit="N", min=1e3, max=3e5, doc="static wheel load F_L3"),

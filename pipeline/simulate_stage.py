@@ -37,9 +37,10 @@ def run_simulate(case: str) -> dict:
     con, _ = artifacts.load_npz(out / "contact.npz", "contact", ccfg, make_target=f"contact CASE={case}")
     gr, _ = artifacts.load_npz(out / "greens.npz", "greens", gcfg, make_target=f"greens CASE={case}")
     wheel = WheelModes(gr["wheel_f"], gr["wheel_mass"], gr["wheel_zeta"], gr["wheel_phi"])
-    cm = contact_model(con, case_friction(c))
+    cm = contact_model(con, case_friction(c, case))
     res = simulate(wheel, gr["rail_kernel"], cm, dt=c["time"]["dt"], v=c["kinematics"]["speed"],
                    gamma_y=c["kinematics"]["gamma_y"], gamma_x=c["kinematics"]["gamma_x"],
+                   spin=c["kinematics"].get("spin", 0.0),
                    preload=c["loading"]["preload"], duration=c["time"]["duration"],
                    tangential=c["contact"]["model"], normal=c["contact"]["normal"], store_every=10)
     m = res.measures()

@@ -40,14 +40,15 @@ def case_linear_model(case: str, mu: float | None = None, gamma_y: float | None 
     if mu is None:
         from .friction import case_friction
 
-        mu = case_friction(c)
+        mu = case_friction(c, case)
     else:
         from .friction import with_curves
 
         con = with_curves(case, con, [mu])
     gamma_y = c["kinematics"]["gamma_y"] if gamma_y is None else gamma_y
     lm = linearise(wheel, gr["rail_kernel"], contact_model(con, mu), dt=c["time"]["dt"],
-                   v=c["kinematics"]["speed"], gamma_y=gamma_y, preload=c["loading"]["preload"])
+                   v=c["kinematics"]["speed"], gamma_y=gamma_y, preload=c["loading"]["preload"],
+                   gamma_x=c["kinematics"]["gamma_x"], spin=c["kinematics"].get("spin", 0.0))
     return c, lm, labels, np.asarray(gr["wheel_f"], float)
 
 

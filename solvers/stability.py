@@ -28,6 +28,20 @@ and the closed-loop poles are the roots z = exp(s dt) of D(s) = det M.  In full
 slip D = 1 + k_c (Y33 + mu0 Y32): the single-mode estimate of the interaction
 validation (kappa_r = Phi3 (Phi3 + mu Phi2) < 0 destabilises) is its one-mode limit.
 
+Both tangential directions (traction gamma_x, spin: ``linearise(..., gamma_x=, spin=)``).  With
+the steady slip w = (gamma_x + L1 phi, gamma_y + L2 phi) v (spin phi as the point contact's
+equivalent creepages, ``solvers.contact.spin``), sigma0 = |w|, e = w / sigma0 (e2 < 0), the force
+F_tau = -F3 mu_RF(sigma) s_tau / sigma linearises to dF = -mu0 e dF3 - K ds with
+
+    K = F3 [mu_RF'(sigma0) e e^T + (mu0 / sigma0) (I - e e^T)]
+
+(along the slip the curve's slope, a falling curve's negative one feeding energy in; across it
+the direction's stiffness mu0 / sigma0 > 0), ds_tau = D (A_tau dF_tau + F0_tau A_tau' dF3 / k_c +
+delta_tau2 dxi2), D = (1 - z^-1) / dt, and no structural motion in direction 1 (the loop has
+none).  Eliminating dF1 (its row has no structure: 1 + K11 D A1 is a contact-only factor, a real
+pole z in (0, 1)) leaves a 2x2 M whose first row is the one above with the Schur complement
+terms; for e1 = 0 (gamma_x = 0, a symmetric patch) K is diagonal and M is the matrix above.
+
 Roots.  Near each lightly damped wheel mode r: the secant method on D times mode r's
 pole pair (regular at the open-loop pole), started at the pole, with the rest of Y
 (the other modes and the rail) expanded to first order about the pole (``Basis``:
@@ -62,6 +76,10 @@ class LinearModel(NamedTuple):
     F3: float                # preload (N)
     A2: float                # lateral tangential compliance (m/N)
     dA2: float = 0.0         # d A2 / d approach at the static approach (1/N): the patch grows with F3
+    A1: float = 0.0          # longitudinal tangential compliance (m/N)
+    dA1: float = 0.0         # d A1 / d approach (1/N)
+    e1: float = 0.0          # slip direction e = w / |w| at the operating point (e2 = -sqrt(1 - e1^2))
+    sigma0: float = 0.0      # |w| (m/s), the operating slip velocity (used for e1 != 0)
 
 
 class Root(NamedTuple):
@@ -122,10 +140,33 @@ def _filter(model: LinearModel):
 def _det(model, Y: np.ndarray, z, scale=1.0):
     """det M for Y (..., 2, 2) at z (...) (module notes); with ``scale`` c and Y = c Y_true,
     det(c M) = c^2 D."""
+    if model.e1 != 0.0:
+        return _det2(model, Y, z, scale)
     q = model.F3 * model.dmu * (1.0 - 1.0 / z) / model.dt
     M00 = scale * (1.0 + q * model.A2) + q * Y[..., 0, 0]
     M01 = (-model.mu0 + q * model.mu0 * model.F3 * model.dA2 / model.kc) * scale + q * Y[..., 0, 1]
     return M00 * (scale + model.kc * Y[..., 1, 1]) - M01 * model.kc * Y[..., 1, 0]
+
+
+def _det2(model, Y, z, scale=1.0):
+    """``_det`` with both tangential directions (module notes: dF1 eliminated)."""
+    m = model
+    e1 = m.e1
+    e2 = -np.sqrt(1.0 - e1 * e1)
+    D = (1.0 - 1.0 / z) / m.dt
+    g = m.mu0 / m.sigma0
+    K11 = m.F3 * (m.dmu * e1 * e1 + g * (1.0 - e1 * e1))
+    K22 = m.F3 * (m.dmu * e2 * e2 + g * (1.0 - e2 * e2))
+    K12 = m.F3 * (m.dmu - g) * e1 * e2
+    F01, F02 = -m.F3 * m.mu0 * e1, -m.F3 * m.mu0 * e2
+    rho = K12 * D * m.A1 / (1.0 + K11 * D * m.A1)
+    c12 = K12 * D * (m.A2 * scale + Y[..., 0, 0])
+    c13 = scale * (m.mu0 * e1 + D * (K11 * F01 * m.dA1 + K12 * F02 * m.dA2) / m.kc) + K12 * D * Y[..., 0, 1]
+    c22 = scale + K22 * D * (m.A2 * scale + Y[..., 0, 0])
+    c23 = scale * (m.mu0 * e2 + D * (K12 * F01 * m.dA1 + K22 * F02 * m.dA2) / m.kc) + K22 * D * Y[..., 0, 1]
+    M00 = c22 - rho * c12
+    M01 = c23 - rho * c13
+    return M00 * (scale + m.kc * Y[..., 1, 1]) - M01 * m.kc * Y[..., 1, 0]
 
 
 def characteristic(model: LinearModel, s: complex, filt=None) -> complex:
@@ -260,24 +301,31 @@ def screen(model: LinearModel, basis: Basis | None = None, polish: bool = True) 
     return sorted(wheel + track, key=lambda r: -r.sigma)
 
 
-def operating_point(model: LinearModel, contact, *, v: float, gamma_y: float) -> LinearModel:
-    """``model`` at another friction curve / creepage: mu0, dmu from ``contact``'s curve at
-    |gamma_y| v (the structures, k_c and A2 kept)."""
+def operating_point(model: LinearModel, contact, *, v: float, gamma_y: float, gamma_x: float = 0.0,
+                    spin: float = 0.0, spin_length=(0.0, 0.0)) -> LinearModel:
+    """``model`` at another friction curve / creepage: mu0, dmu from ``contact``'s curve at the
+    steady slip |w|, w = (gamma_x + L1 spin, gamma_y + L2 spin) v, and its direction (the
+    structures, k_c and the compliances kept; module notes)."""
     from .contact.friction import mu_and_slope
 
-    mu0, dmu = mu_and_slope(abs(gamma_y) * v, contact.s_nodes, contact.mu_nodes, contact.slopes)
-    return model._replace(mu0=float(mu0), dmu=float(dmu))
+    w1 = (gamma_x + spin_length[0] * spin) * v
+    w2 = (gamma_y + spin_length[1] * spin) * v
+    sigma0 = float(np.hypot(w1, w2))              # (the lateral slip is taken as negative: F2 > 0)
+    mu0, dmu = mu_and_slope(sigma0, contact.s_nodes, contact.mu_nodes, contact.slopes)
+    return model._replace(mu0=float(mu0), dmu=float(dmu), e1=float(w1 / sigma0) if sigma0 > 0 else 0.0, sigma0=sigma0)
 
 
 def linearise(wheel, rail_kernel: np.ndarray, contact, *, dt: float, v: float, gamma_y: float,
-              preload: float) -> LinearModel:
+              preload: float, gamma_x: float = 0.0, spin: float = 0.0) -> LinearModel:
     """The LinearModel of the time loop's steady rolling state.
 
     wheel: ``interaction.WheelModes``; rail_kernel: the moving Green's function (K, 2, 2);
-    contact: ``interaction.ContactModel``; dt (s), v (m/s), gamma_y (< 0), preload F3 (N)."""
+    contact: ``interaction.ContactModel``; dt (s), v (m/s), gamma_y (< 0), preload F3 (N),
+    gamma_x, spin (1/m) as in the time loop."""
     from .contact.compliance import table_compliance
     from .contact.norm import table_force
     from .interaction import static_approach
+    from .timeloop.driver import spin_length
 
     if gamma_y >= 0:
         raise ValueError(f"linearise: gamma_y = {gamma_y} must be negative (F2 > 0 on the rail)")
@@ -285,11 +333,12 @@ def linearise(wheel, rail_kernel: np.ndarray, contact, *, dt: float, v: float, g
     h = 1e-6 * app
     kc = (table_force(app + h, contact.xi3_nodes, contact.q_nodes)
           - table_force(app - h, contact.xi3_nodes, contact.q_nodes)) / (2 * h)
-    A2 = table_compliance(app, contact.xi3_nodes, contact.A2_nodes)
-    dA2 = (table_compliance(app + h, contact.xi3_nodes, contact.A2_nodes)
-           - table_compliance(app - h, contact.xi3_nodes, contact.A2_nodes)) / (2 * h)
+    A = [table_compliance(app, contact.xi3_nodes, n) for n in (contact.A1_nodes, contact.A2_nodes)]
+    dA = [(table_compliance(app + h, contact.xi3_nodes, n) - table_compliance(app - h, contact.xi3_nodes, n)) / (2 * h)
+          for n in (contact.A1_nodes, contact.A2_nodes)]
     base = LinearModel(np.asarray(wheel.f_r, float), np.asarray(wheel.modal_mass, float),
                        np.asarray(wheel.zeta, float), np.asarray(wheel.phi, float),
-                       np.asarray(rail_kernel, float), float(dt), float(kc), 0.0, 0.0, float(preload), float(A2),
-                       float(dA2))
-    return operating_point(base, contact, v=v, gamma_y=gamma_y)
+                       np.asarray(rail_kernel, float), float(dt), float(kc), 0.0, 0.0, float(preload), float(A[1]),
+                       float(dA[1]), float(A[0]), float(dA[0]))
+    L = spin_length(contact, app, v) if spin != 0.0 else (0.0, 0.0)
+    return operating_point(base, contact, v=v, gamma_y=gamma_y, gamma_x=gamma_x, spin=spin, spin_length=L)

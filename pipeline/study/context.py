@@ -77,6 +77,7 @@ class CaseContext:
     radiation: Any = None  # pipeline.radiate_stage.load_radiation_model(case), or None (not requested)
     radiation_note: str = ""
     extra: dict = field(default_factory=dict)
+    friction: Any = None   # the case's resolved friction (pipeline.friction.Friction); mu: its coefficient
 
     @property
     def flexible(self) -> np.ndarray:
@@ -95,7 +96,7 @@ def load_context(case: str, *, radiation: bool = True, zeta_overrides: dict | No
     the friction coefficients the study runs besides the case's own; their curves are built on the
     case's contact (``pipeline.friction.with_curves``, cached by value)."""
     from ..contact_stage import contact_inputs
-    from ..friction import with_curves
+    from ..friction import case_friction, with_curves
     from ..greens_stage import greens_inputs
 
     c, _, _, ccfg = contact_inputs(case)
@@ -119,6 +120,6 @@ def load_context(case: str, *, radiation: bool = True, zeta_overrides: dict | No
     return CaseContext(case=case, inputs=inputs, dy_wr=c["contact"]["dy_wr"], dt=c["time"]["dt"],
                        v=c["kinematics"]["speed"], preload=c["loading"]["preload"],
                        gamma_x=c["kinematics"]["gamma_x"], gamma_y=c["kinematics"]["gamma_y"],
-                       mu=c["friction"]["mu"], tangential=c["contact"]["model"], normal=c["contact"]["normal"],
+                       mu=case_friction(c, case).mu, friction=case_friction(c, case), tangential=c["contact"]["model"], normal=c["contact"]["normal"],
                        contact=con, wheel=wheel, rail_kernel=gr["rail_kernel"], radiation=model,
                        radiation_note=note)

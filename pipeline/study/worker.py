@@ -27,8 +27,11 @@ NAN = float("nan")
 CASE_MODEL = object()      # _measures: the context's own radiation model
 
 
-def _contact(ctx, mu: float):
-    key = (ctx.case, ctx.inputs, round(mu, 6))
+def _contact(ctx, mu):
+    """The contact model of ``ctx`` with the curve of ``mu`` (a Coulomb coefficient or a law)."""
+    from solvers.timeloop.inputs import curve_label
+
+    key = (ctx.case, ctx.inputs, curve_label(mu))
     if key not in _CONTACT:
         _CONTACT[key] = contact_model(ctx.contact, mu)
     return _CONTACT[key]
@@ -38,7 +41,7 @@ def _warm(ctx, tangential: str) -> None:
     """Compile (or load from numba's cache) the time loop once per process, outside the timing."""
     if tangential in _WARM:
         return
-    cm = _contact(ctx, ctx.mu)
+    cm = _contact(ctx, ctx.mu if ctx.friction is None else ctx.friction)
     simulate(_wheel(ctx), ctx.rail_kernel, cm, dt=ctx.dt, v=ctx.v, gamma_y=ctx.gamma_y, preload=ctx.preload,
              duration=20 * ctx.dt, tangential=tangential, normal=ctx.normal, stop=None, final=0)
     _WARM.add(tangential)

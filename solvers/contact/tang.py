@@ -81,6 +81,7 @@ import numpy as np
 # tang_newton (the active-set Newton method, steady: GMRES), tang_pcg (transient: the Newton
 # method with its CG compiled whole), tang_rolling (one step's problem on the contact's window),
 # tang_steps (its bookkeeping on the grid, numba).
+from .friction_laws import FrictionLaw
 from .tang_newton import CoulombResult, solve_coulomb  # noqa: F401
 from .tang_operator import TangentialOperator, shifted_inverse, tangential_operator  # noqa: F401
 from .tang_rolling import solve_rolling
@@ -102,10 +103,13 @@ def rigid_slip(shape, dx, dy, v, gamma_x=0.0, gamma_y=0.0, spin=0.0, origin=(0.0
 def tang_steady(p3, dx, dy, v, mu, gamma_x=0.0, gamma_y=0.0, spin=0.0, *,
                 warm: TangentialContact | None = None, **options) -> TangentialContact:
     """Steady-state rolling (du/dt = 0) with normal pressures p3 (nx, ny) [Pa] on the grid
-    dx (rolling direction) x dy [m], rolling speed v [m/s], Coulomb coefficient mu and
-    creepages gamma_x, gamma_y [-], spin [1/m].  `warm`: a previous solution as start.
+    dx (rolling direction) x dy [m], rolling speed v [m/s], Coulomb coefficient mu (or a
+    ``FrictionLaw``: the local coefficient mu(|s|) at the local slip speed, ``tang_falling``)
+    and creepages gamma_x, gamma_y [-], spin [1/m].  `warm`: a previous solution as start.
     ``options``: the fields of ``TangOptions`` (E, nu, tol, w_offset, full_output)."""
-    return solve_rolling(p3, Rolling(dx, dy, v, mu, gamma_x, gamma_y, spin), True, warm, TangOptions(**options))
+    mu, law = _coefficient(mu)
+    return solve_rolling(p3, Rolling(dx, dy, v, mu, gamma_x, gamma_y, spin), True, warm, TangOptions(**options),
+                         law)
 
 
 def tang_transient(p3, dx, dy, v, mu, gamma_x=0.0, gamma_y=0.0, spin=0.0, *,
@@ -116,4 +120,18 @@ def tang_transient(p3, dx, dy, v, mu, gamma_x=0.0, gamma_y=0.0, spin=0.0, *,
     last steps: the predictor that would have done best on the last step).  Call once per
     step.  ``options`` as in tang_steady (the time loop needs no displacements outside the
     contact: full_output=False saves one FFT product per step)."""
+    mu, law = _coefficient(mu)
+    if law is not None:
+        raise ValueError(f"tang_transient: friction law '{law.name}' depends on the slip speed; transient "
+                         "TANG takes Coulomb friction (a float or the 'coulomb' law), tang_steady takes any law")
     return solve_rolling(p3, Rolling(dx, dy, v, mu, gamma_x, gamma_y, spin), False, state, TangOptions(**options))
+
+
+def _coefficient(mu):
+    """(mu, law): a float or the 'coulomb' law -> (its mu, None), exactly today's path; a
+    slip-speed dependent law -> (mu(0), law)."""
+    if isinstance(mu, FrictionLaw):
+        if mu.is_coulomb:
+            return float(mu.array[0]), None
+        return mu.mu_static, mu
+    return mu, None

@@ -7,6 +7,7 @@ import warnings
 
 import numpy as np
 
+from .tang_falling import solve_falling
 from .tang_newton import solve_coulomb
 from .tang_operator import tangential_operator
 from .tang_pcg import transient_step
@@ -25,9 +26,11 @@ PAD = 1                     # elements around the contact's bounding box when it
 
 
 def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | None,
-                  opts: TangOptions) -> TangentialContact:
+                  opts: TangOptions, law=None) -> TangentialContact:
     """Common driver of tang_steady / tang_transient: the problem of pressures p3 (nx, ny) [Pa]
-    rolling as ``roll`` (steady or one transient step from ``warm``) on the contact's window."""
+    rolling as ``roll`` (steady or one transient step from ``warm``) on the contact's window.
+    `law`: a slip-speed dependent FrictionLaw (steady only; roll.mu is then its mu(0)), None:
+    Coulomb with roll.mu."""
     dx, dy, v, mu, gamma_x, gamma_y, spin = roll
     E, nu, tol, w_offset, full_output = opts
     p3 = np.asarray(p3, dtype=float)
@@ -61,7 +64,7 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
     predict = transient_prev and h is not None and h.order > 0 and h.window == win and inside(win, warm.window)
     if steady:
         P, S, st, sl, U, ahead, f1, f2, newton, krylov, converged = _steady(p3, ix, iy, win, kin, mu, op, P_old, warm,
-                                                                        tol)
+                                                                        tol, law)
     else:                                      # compiled whole (tang_pcg)
         U_old = warm.U if transient_prev else _EMPTY
         if transient_prev and h is not None and h.pred.shape[1:] == P_old.shape and h.window == win:
@@ -89,9 +92,10 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
                              converged, krylov, ahead, history, valid, P, U)
 
 
-def _steady(p3, ix, iy, win, kin, mu, op, P_old, warm, tol):
-    """The steady solve on the window (GMRES in Python, ``tang_newton``), returning the fields
-    of ``tang_pcg.transient_step`` up to ``converged``."""
+def _steady(p3, ix, iy, win, kin, mu, op, P_old, warm, tol, law=None):
+    """The steady solve on the window (GMRES in Python, ``tang_newton``; with a slip-speed
+    dependent `law` the outer iteration of ``tang_falling``), returning the fields of
+    ``tang_pcg.transient_step`` up to ``converged``."""
     nx, ny = p3.shape
     i0, _, j0, _ = win
     N = ix.size
@@ -101,7 +105,12 @@ def _steady(p3, ix, iy, win, kin, mu, op, P_old, warm, tol):
     p0, stick0 = np.zeros((N, 2)), np.ones(N, bool)
     if P_old is not None:                      # warm start; entering elements start sliding
         start_values(ix, iy, r, g, P_old, warm.stick, warm.slip, _EMPTY, p0, stick0)
-    res = solve_coulomb(op, ix - i0, iy - j0, r, g, p0, stick0, tol=tol, warm=warm is not None)
+    if law is None:
+        res = solve_coulomb(op, ix - i0, iy - j0, r, g, p0, stick0, tol=tol, warm=warm is not None)
+    else:                                      # INISLP = 0: the warm start's slip speeds
+        speed = None if P_old is None else np.hypot(warm.s1[ix, iy], warm.s2[ix, iy])
+        res = solve_falling(op, ix - i0, iy - j0, r, p3[ix, iy], law, kin[3], p0, stick0, speed=speed, tol=tol,
+                            warm=warm is not None).result
     P, S, st, sl, f1, f2 = on_grid(ix, iy, res.p, res.s, res.stick, kin[3], (nx, ny))
     U, ahead = window_fields(res.u, win, (nx, ny))
     return P, S, st, sl, U, ahead, f1, f2, res.newton, res.krylov, res.converged

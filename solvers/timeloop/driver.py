@@ -36,7 +36,9 @@ class RunSettings:
     mu_RF(0) = 0, else EPS_SLIP); driver: 'auto' (numba for table + point + table compliance,
     else the Python reference loop) or 'python' (force the reference loop, for testing);
     rail_block: head length of the rail's partitioned FFT convolution (exact,
-    ``solvers.partitioned``), None for the direct sum."""
+    ``solvers.partitioned``), None for the direct sum; spin [1/m]: a number or a per-step
+    history like the creepages (the point contact: as equivalent creepages, ``timeloop.kernel``;
+    Kalker's TANG: in the rigid slip)."""
     dt: float
     v: float
     gamma_y: object
@@ -56,6 +58,7 @@ class RunSettings:
     eps: float | None = None
     driver: str = "auto"
     rail_block: int | None = DEFAULT_BLOCK
+    spin: object = 0.0
 
     def __post_init__(self):
         if self.duration > MAX_DURATION + 1e-12:
@@ -92,11 +95,13 @@ def loop_params(contact: ContactModel, s: RunSettings) -> tuple[LoopParams, list
     n_steps = int(round(s.duration / s.dt))
     gx = per_step(s.gamma_x, n_steps)
     gy = per_step(s.gamma_y, n_steps)
+    spin = per_step(s.spin, n_steps)
     xi3_static = s.xi3_static if s.xi3_static is not None else static_approach(contact, s.preload)
+    L = spin_length(contact, xi3_static, s.v) if np.any(spin != 0.0) else np.zeros(2)
     A0 = np.array([table_compliance(xi3_static, contact.xi3_nodes, contact.A1_nodes),
                    table_compliance(xi3_static, contact.xi3_nodes, contact.A2_nodes)])
     if s.start == "steady":
-        F_ref = steady_forces(contact, s.v, gx[0], gy[0], s.preload, eps)
+        F_ref = steady_forces(contact, s.v, gx[0] + L[0] * spin[0], gy[0] + L[1] * spin[0], s.preload, eps)
         u_ref = A0 * F_ref[:2]
         kick = DEFAULT_KICK if s.kick is None else s.kick
     else:
@@ -105,8 +110,23 @@ def loop_params(contact: ContactModel, s: RunSettings) -> tuple[LoopParams, list
         kick = 0.0 if s.kick is None else s.kick
     kick = np.array([kick, 0.0] if np.ndim(kick) == 0 else kick, float).reshape(2)
     p = LoopParams(n_steps, float(s.dt), float(s.v), float(xi3_static), float(s.slip_sign), float(eps), gx, gy,
-                   F_ref, u_ref, kick / s.dt)
+                   F_ref, u_ref, kick / s.dt, spin, L)
     return p, kick.tolist()
+
+
+def spin_length(contact: ContactModel, xi3_static: float, v: float) -> np.ndarray:
+    """The contact's spin lengths L (2,) [m] (``solvers.contact.spin``): its own, or from Kalker's
+    linear theory on the table's pressure at the static approach."""
+    if contact.spin_length is not None:
+        return np.asarray(contact.spin_length, float).reshape(2)
+    if contact.pressure_nodes is None or contact.dx is None or contact.dy is None:
+        raise ValueError("spin needs the contact's spin_length or its pressure table (pressure_nodes, dx, dy)")
+    from ..contact.norm import NormTable, table_pressure
+    from ..contact.spin import spin_lengths
+
+    table = NormTable(contact.xi3_nodes, contact.F3_nodes, contact.q_nodes, contact.pressure_nodes,
+                      contact.pressure_nodes > 0)
+    return spin_lengths(table_pressure(table, xi3_static), contact.dx, contact.dy, v, contact.E, contact.nu)
 
 
 def simulate(wheel: WheelModes | None, rail_kernel: np.ndarray | None, contact: ContactModel,
@@ -127,7 +147,7 @@ def simulate(wheel: WheelModes | None, rail_kernel: np.ndarray | None, contact: 
     rc = rail_convolver(rail_kernel, s.rail_block)
     info = dict(dt=s.dt, v=s.v, preload=s.preload, duration=s.duration, tangential=s.tangential, normal=s.normal,
                 compliance=s.compliance, start=s.start, kick=kick, slip_sign=s.slip_sign, final=s.final,
-                store_every=store_every, eps=p.eps)
+                store_every=store_every, eps=p.eps, spin_length=p.spin_length.tolist())
     t0 = time.perf_counter()
     if s.tangential == "point" and s.normal == "table" and s.compliance == "table" and s.driver == "auto":
         done, reason = run_point(filt, rc, p, point_tables(contact), rec, win)

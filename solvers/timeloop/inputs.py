@@ -37,7 +37,9 @@ class ContactModel(NamedTuple):
     compliances over the approach [m/N]; s_nodes, mu_nodes, slopes: the regularised friction
     curve mu_RF(s) (monotone Hermite, ``friction.mu_rf``); mu: its Coulomb coefficient.
     For the reference drivers: F3_nodes and pressure_nodes (the table's pressure fields, for
-    Kalker's TANG), gap, dx, dy, E, nu (per-step NORM, TANG)."""
+    Kalker's TANG), gap, dx, dy, E, nu (per-step NORM, TANG).  spin_length (2,) [m]: spin's
+    equivalent creepages per 1/m (``solvers.contact.spin``; None: computed from the pressure at
+    the static approach when a run has spin)."""
     xi3_nodes: np.ndarray
     q_nodes: np.ndarray
     A1_nodes: np.ndarray
@@ -53,6 +55,7 @@ class ContactModel(NamedTuple):
     dy: float | None = None
     E: float = 210e9
     nu: float = 0.3
+    spin_length: np.ndarray | None = None
 
 
 def curve_label(law) -> str:
@@ -145,7 +148,8 @@ class LoopParams(NamedTuple):
     +1 or -1 (sign of the structural term of [4.30]); eps [m/s]: slip-direction regularisation;
     gx, gy: creepage per step (one value, or a history whose last value is held); F_ref (3,) [N]
     and u_ref (2,) [m]: the reference state; kick (2,) [N]: force added to the deviations during
-    the first step."""
+    the first step; spin (per step, like gx) [1/m] and spin_length (2,) [m]: the point contact
+    adds spin_length * spin to (gx, gy) (equivalent creepages), Kalker's TANG takes the spin."""
     n_steps: int
     dt: float
     v: float
@@ -157,6 +161,8 @@ class LoopParams(NamedTuple):
     F_ref: np.ndarray
     u_ref: np.ndarray
     kick: np.ndarray
+    spin: np.ndarray = np.zeros(1)
+    spin_length: np.ndarray = np.zeros(2)
 
 
 def static_approach(contact: ContactModel, preload: float) -> float:

@@ -65,7 +65,8 @@ def kalker_steps(n, filt, rc, p, rec, win, loop, table, contact, tang, op, row):
         gxn = p.gx[min(n, len(p.gx) - 1)]
         gyn = p.gy[min(n, len(p.gy) - 1)]
         dxi2 = slip_sign * (xi2 - xi2_old) / dt
-        kin = (dx, dy, v, dx / v, gxn, gyn + dxi2 / v, 0.0, W_OFFSET)   # as tang_transient
+        spn = p.spin[min(n, len(p.spin) - 1)]
+        kin = (dx, dy, v, dx / v, gxn, gyn + dxi2 / v, spn, W_OFFSET)   # as tang_transient
         P, S, st, sl, U, ahead, f1, f2, newton, krylov, converged, d, hn, order, pred = transient_step(
             p3, ix, iy, window, kin, mu, ahead, P, st, sl, pred if order > 0 else no_prediction, U, d, hn, tol,
             MAX_ITER, bufs, hat, symbol, inv, a0, scale)

@@ -1,6 +1,14 @@
 """The numba time loop (table NORM, point-contact model; notes in ``solvers.interaction``): the
 tangential point-contact solve of one step [4.25]-[4.31], the end-of-step update of the
-structures [4.13], [4.15] shared with the reference driver, and the loop itself."""
+structures [4.13], [4.15] shared with the reference driver, and the loop itself.
+
+Spin in the point contact: its effect on the forces enters as equivalent creepages, gamma_tau +
+L_tau spin, with L = C^-1 dF/dspin from Kalker's linear theory on the contact's own grid
+(``solvers.contact.spin``; for an elliptic patch L2 = sqrt(ab) C23/C22, L1 = 0: Shen, Hedrick and
+Elkins, Vehicle System Dynamics 12 (1983)).  The structures have no longitudinal direction: the
+loop's direction 1 is the contact's own compliance A1 only (the wheel's circumferential and
+torsional motion and the rail's longitudinal receptance are not modelled), so F1 changes the
+slip direction and the magnitude left for F2, never a structural displacement."""
 from __future__ import annotations
 
 import math
@@ -148,17 +156,24 @@ def run_point(filt, rc, p, tab, rec, win):
     u2p = p.u_ref[1]
     sig = 0.0
     sig_old = 0.0
-    mu_top = mu_nodes[mu_nodes.shape[0] - 1]
+    itop = np.argmax(mu_nodes)                      # full slip from the curve's peak on (a falling curve falls)
+    mu_top = mu_nodes[itop]
+    s_top = s_nodes[itop]
     row = np.zeros(8)
     ngx = gx.shape[0]
     ngy = gy.shape[0]
+    spin = p.spin
+    nsp = spin.shape[0]
+    spin_l1 = p.spin_length[0]
+    spin_l2 = p.spin_length[1]
     iw = 0
     jw = 0
     reason = 0
     done = 0
     for n in range(p.n_steps):
-        gxn = gx[n if n < ngx else ngx - 1]
-        gyn = gy[n if n < ngy else ngy - 1]
+        spn = spin[n if n < nsp else nsp - 1]           # spin as equivalent creepages (module notes)
+        gxn = gx[n if n < ngx else ngx - 1] + spin_l1 * spn
+        gyn = gy[n if n < ngy else ngy - 1] + spin_l2 * spn
         app = xi3_static - xi3
         F3 = table_force(app, xi3_nodes, q_nodes)
         b1 = gxn * v - u1p / dt
@@ -176,7 +191,7 @@ def run_point(filt, rc, p, tab, rec, win):
             if it > counters[1]:
                 counters[1] = it
             counters[2] += nb
-            state = 2.0 if m >= FULL_SLIP * mu_top else 1.0
+            state = 2.0 if (m >= FULL_SLIP * mu_top or sig >= s_top) else 1.0
         else:                                   # loss of contact: no force, deformation released
             F1 = 0.0
             F2 = 0.0

@@ -41,14 +41,15 @@ def run_reference(filt, rc, p: LoopParams, c: ContactModel, rec: Record, win: Wi
     ``run_point``.  Returns (steps done, reason, F_ref): with Kalker's TANG and start='steady' the
     reference forces are TANG's steady ones instead of p.F_ref."""
     table = _check(c, p, tangential, normal, compliance)
-    n_steps, dt, v, xi3_static, slip_sign, eps, gx, gy, F_ref, u_ref, _ = p
+    n_steps, dt, v, xi3_static, slip_sign, eps, gx, gy, F_ref, u_ref, _, spin, L = p
     counters = rec.counters
     E, nu = c.E, c.nu
-    mu_top = c.mu_nodes[-1]
+    itop = int(np.argmax(c.mu_nodes))                     # full slip from the curve's peak on
+    mu_top, s_top = c.mu_nodes[itop], c.s_nodes[itop]
     tang_state = None
     if tangential == "kalker" and start == "steady":
         p0 = table_pressure(table, xi3_static) if normal == "table" else norm(c.gap, xi3_static, c.dx, c.dy, E, nu).p
-        tang_state = tang_steady(p0, c.dx, c.dy, v, c.mu, gamma_x=gx[0], gamma_y=gy[0], E=E, nu=nu,
+        tang_state = tang_steady(p0, c.dx, c.dy, v, c.mu, gamma_x=gx[0], gamma_y=gy[0], spin=spin[0], E=E, nu=nu,
                                  full_output=False, tol=KALKER_TOL)
         F_ref = np.array([tang_state.F1, tang_state.F2, F_ref[2]])
         p = p._replace(F_ref=F_ref)
@@ -77,6 +78,7 @@ def run_reference(filt, rc, p: LoopParams, c: ContactModel, rec: Record, win: Wi
                     break
         gxn = gx[min(n, len(gx) - 1)]
         gyn = gy[min(n, len(gy) - 1)]
+        spn = spin[min(n, len(spin) - 1)]
         app = xi3_static - xi3
         p3 = None
         if normal == "table":
@@ -94,20 +96,21 @@ def run_reference(filt, rc, p: LoopParams, c: ContactModel, rec: Record, win: Wi
                     if p3 is None:
                         p3 = table_pressure(table, app)
                     A1, A2 = contact_compliance(p3, F_prev, c.dx, c.dy, E, nu)
-                b1 = gxn * v - u1p / dt
-                b2 = gyn * v - u2p / dt + dxi2
+                b1 = (gxn + L[0] * spn) * v - u1p / dt              # spin as equivalent creepages
+                b2 = (gyn + L[1] * spn) * v - u2p / dt + dxi2
                 F1, F2, s1, s2, sig, it, nb = point_contact(b1, b2, A1 / dt, A2 / dt, F3, c.s_nodes, c.mu_nodes,
                                                             c.slopes, eps, sig)
                 u1p, u2p = A1 * F1, A2 * F2
                 counters[0] += it
                 counters[1] = max(counters[1], it)
                 counters[2] += nb
-                state = 2.0 if mu_rf(sig, c.s_nodes, c.mu_nodes, c.slopes) >= FULL_SLIP * mu_top else 1.0
+                m = mu_rf(sig, c.s_nodes, c.mu_nodes, c.slopes)
+                state = 2.0 if (m >= FULL_SLIP * mu_top or sig >= s_top) else 1.0
             else:
                 if p3 is None:
                     p3 = table_pressure(table, app)
                 tang_state = tang_transient(p3, c.dx, c.dy, v, c.mu, gamma_x=gxn, gamma_y=gyn + dxi2 / v,
-                                            E=E, nu=nu, state=tang_state, full_output=False, tol=KALKER_TOL)
+                                            spin=spn, E=E, nu=nu, state=tang_state, full_output=False, tol=KALKER_TOL)
                 F1, F2 = tang_state.F1, tang_state.F2
                 s1, s2, state = slip_summary(p3, tang_state.s1, tang_state.s2, tang_state.stick)
                 counters[0] += tang_state.iterations
@@ -115,7 +118,7 @@ def run_reference(filt, rc, p: LoopParams, c: ContactModel, rec: Record, win: Wi
             F_prev = (F1, F2)
         else:
             F1 = F2 = F3 = 0.0
-            s1, s2 = gxn * v - u1p / dt, gyn * v - u2p / dt + dxi2
+            s1, s2 = (gxn + L[0] * spn) * v - u1p / dt, (gyn + L[1] * spn) * v - u2p / dt + dxi2
             u1p = u2p = 0.0
             tang_state = None
             state = 0.0

@@ -87,3 +87,36 @@ def test_shared_basis_roots_match_the_exact_roots(squealer_run):
     for r in screen(lm, b, polish=False):
         if r.mode >= 0 and r.sigma > 0:
             assert abs(r.sigma - exact[r.mode].sigma) < 2e-4 * abs(r.sigma) and abs(r.f_hz - exact[r.mode].f_hz) < 1e-3
+
+
+@pytest.fixture(scope="module")
+def falling_squealer():
+    """The reduced squealer with a falling law (exponential, 0.35 -> 0.25, s_ref = 0.5 m/s: slope
+    -0.13 s/m at the operating slip) and with traction and spin (gamma_x = 0.004, spin 0.5/m with
+    spin lengths (0, 2.5 mm), the default contact's size)."""
+    from solvers.contact.falling import ExponentialLaw, scaled_curve
+
+    wheel, g = reduced_squealer(DT)
+    c = hertz_contact(0.35)
+    s, m, d = scaled_curve(c.s_nodes, c.mu_nodes, c.slopes, c.mu, ExponentialLaw(0.35, 0.25, 0.5))
+    return wheel, g, c._replace(s_nodes=s, mu_nodes=m, slopes=d, spin_length=np.array([0.0, 2.5e-3]))
+
+
+@pytest.mark.parametrize("extra", [{}, {"gamma_x": 0.004, "spin": 0.5}], ids=["lateral", "traction+spin"])
+def test_screen_carries_the_falling_slope(falling_squealer, extra):
+    """A falling slope feeds energy in: the screen's growth rates rise against Coulomb's (the
+    same modes, same creepages) and match those measured in the time loop (matrix pencil, tests/stability/growth.py)
+    to 2 %; with traction and spin (both tangential directions, e1 != 0) as well."""
+    from tests.stability.growth import linear_phase, pencil_growth
+
+    wheel, g, c = falling_squealer
+    kw = dict(dt=DT, v=V, gamma_y=GAMMA_Y, preload=PRELOAD, **extra)
+    lm = linearise(wheel, g, c, **kw)
+    assert lm.dmu < -0.1 and (lm.e1 != 0.0) == bool(extra)
+    coulomb = hertz_contact(0.35)._replace(spin_length=c.spin_length)
+    coul = {r.mode: r.sigma for r in wheel_roots(linearise(wheel, g, coulomb, **kw))}
+    r = simulate(wheel, g, c, duration=0.3, stop=None, final=0.3, kick=(1e-12, 0.0), **kw)
+    F2 = linear_phase(r.F_final[:, 1])
+    for root in wheel_roots(lm):
+        assert root.sigma > coul[root.mode] + 10.0
+        assert pencil_growth(F2, DT, root.f_hz) == pytest.approx(root.sigma, rel=0.02), root
