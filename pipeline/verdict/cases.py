@@ -1,7 +1,7 @@
 """A curve's wheels as ordinary case files: ``$BUILD/curves/<curve>/cases/<wheel>.toml`` (the case
 schema, ``pipeline.schemas.CASE``), so every stage runs them by the name ``<curve>/<wheel>``.
 
-From the wheel's operating point: ``[contact] dy_wr``, ``[kinematics] gamma_y, gamma_x, speed``
+From the wheel's operating point: ``[contact] dy_wr``, ``[kinematics] gamma_y, gamma_x, spin, speed``
 (the curve's speed), ``[loading] preload`` = the wheel load, ``[friction]`` = the curve's
 friction table; the time step and duration as the default case (SPEC 6); the wheel and rail
 files from the vehicle and the curve.  Keys the case schema does not know (spin, the contact
@@ -44,12 +44,13 @@ def wheel_case(info: CurveInfo, p: WheelPoint) -> dict:
         "wheel": info.wheel, "rail": info.rail,
         "contact": {"dy_wr": p.dy_wr, "model": "point", "normal": "table"},
         "friction": dict(info.friction),
-        "kinematics": {"gamma_y": p.gamma_y, "gamma_x": p.gamma_x, "speed": info.speed_kmh / 3.6},
+        "kinematics": {"gamma_y": p.gamma_y, "gamma_x": p.gamma_x, "spin": p.spin, "speed": info.speed_kmh / 3.6},
         "loading": {"preload": p.wheel_load},
         "time": {"dt": DT, "duration": DURATION},
     }
     for k, v in (p.case or {}).items():
         case[k] = dict(case.get(k, {}), **v) if isinstance(v, dict) else v
+    case["kinematics"].setdefault("spin", p.spin)
     case = fit_schema(case, CASE)
     where = paths.case_file(case["name"])
     try:

@@ -47,7 +47,10 @@ class CaseModels:
 
         from ..study.context import load_context
 
+        from ..case import resolve_case
+
         self.ctx = load_context(case, radiation=False)
+        self.spin = float(resolve_case(case).case["kinematics"].get("spin", 0.0))   # 1/m
         # the Coulomb curves the contact artifact holds (labels 'coulomb(mu=0.35)'), by coefficient
         self.mus = np.array([float(lab.split("=")[1].rstrip(")")) for lab in curve_labels(self.ctx.contact)
                              if lab.startswith("coulomb(mu=")], float)
@@ -79,15 +82,17 @@ class CaseModels:
 
         c = self.ctx
         idx = np.arange(len(c.wheel["f"])) if modes is None else np.asarray(modes, int)
-        wheel, kernel = self.wheel(zeta, idx), np.asarray(c.rail_kernel, float)
-        if c.gamma_y > 0:        # the mirror image y -> -y: cross receptances change sign (module notes)
+        wheel, kernel, spin = self.wheel(zeta, idx), np.asarray(c.rail_kernel, float), self.spin
+        if c.gamma_y > 0:        # the mirror image y -> -y: cross receptances and spin change sign (module notes)
             phi = np.array(wheel.phi, float)
             phi[:, 0] *= -1.0
             wheel = wheel._replace(phi=phi)
             kernel = kernel.copy()
             kernel[:, 0, 1] *= -1.0
             kernel[:, 1, 0] *= -1.0
-        lm = linearise(wheel, kernel, self.contact(mu), dt=c.dt, v=c.v, gamma_y=-abs(c.gamma_y), preload=c.preload)
+            spin = -spin
+        lm = linearise(wheel, kernel, self.contact(mu), dt=c.dt, v=c.v, gamma_y=-abs(c.gamma_y), preload=c.preload,
+                       gamma_x=c.gamma_x, spin=spin)
         return [r._replace(mode=int(idx[r.mode]) if r.mode >= 0 else -1) for r in screen(lm)]
 
     def unstable(self, mu: float) -> bool:
@@ -96,20 +101,18 @@ class CaseModels:
         return growing_wheel_root(self.roots(mu)) is not None
 
     def simulate(self, mu: float, zeta=None) -> dict:
-        """One time-loop run (SPEC 6: at most 8 s, early stop): L_F2, f_dominant, squeals."""
+        """One time-loop run as the simulate stage's (SPEC 6: at most 8 s, early stop at a limit cycle,
+        the case's creepages and spin): L_F2, f_dominant, squeals."""
         from solvers.study import squeals
 
-        from ..study.tasks import Simulation
-        from ..study.worker import _run
+        from solvers.interaction import StopRule, simulate
 
-        sim = Simulation(duration=DURATION, early_stop=True, final=0.5, window=0.25, level=SQUEAL_LEVEL_DB)
         ctx = self.ctx
-        cm = self.contact(mu)
-        key = (ctx.case, ctx.inputs, round(mu, 6))
-        from ..study import worker
-
-        worker._CONTACT[key] = cm          # the worker's per-process cache: its contact at this mu
-        m = _run(ctx, self.wheel(zeta), mu, ctx.gamma_y, sim).measures()
+        res = simulate(self.wheel(zeta), ctx.rail_kernel, self.contact(mu), dt=ctx.dt, v=ctx.v, gamma_y=ctx.gamma_y,
+                       gamma_x=ctx.gamma_x, spin=self.spin, preload=ctx.preload, duration=DURATION,
+                       tangential=ctx.tangential, normal=ctx.normal, stop=StopRule(window=0.25),
+                       store_every=max(1, int(round(0.01 / ctx.dt))), final=0.5)
+        m = res.measures()
         return {"mu": mu, "L_F2": float(m["L_F2"]), "f": float(m["f_dominant"]),
                 "squeals": squeals(m["L_F2"], SQUEAL_LEVEL_DB)}
 
