@@ -34,10 +34,11 @@ def verdict_markdown(info: CurveInfo, points, rows: list[dict], wall: float) -> 
             f"cant {1e3 * info.cant:g} mm\n\n")
     if loud is None:
         unstable = [r["wheel"] for r in rows if math.isfinite(r["screen_sigma"])]
-        verdict = ("**No squeal.** No wheel of the leading bogie squeals" +
-                   (f" (the stability screen found growing modes at {', '.join(unstable)}, the time loop's "
-                    "limit cycle stays below L_F2 = 10 dB)" if unstable else
-                    " (the stability screen finds every wheel mode decaying)") + ".\n\n")
+        verdict = ("**No squeal.** No wheel of the leading bogie squeals: " +
+                   (f"the stability screen finds growing modes at {', '.join(unstable)}, but the time loop's "
+                    "motion stays below L_F2 = 10 dB re 1 N" if unstable else
+                    "the stability screen finds every wheel mode decaying, and the time loop confirms it "
+                    "(L_F2 < 10 dB re 1 N at every wheel with lateral creepage)") + ".\n\n")
     else:
         verdict = (f"**Squeal.** Loudest: wheel **{loud['wheel']}** at **{loud['f_squeal']:.0f} Hz** (wheel mode "
                    f"{loud['mode'] or '-'}), L_pA = **{_f(loud['L_pA'])} dB(A)** at 7.5 m from the track centre, "

@@ -7,9 +7,9 @@
 3. contact, greens and the stability screen for every wheel (the screen through
    ``mitigation.CaseModels``, which also takes a wheel whose lateral creepage is positive, as the
    mirror image y -> -y of the point-contact loop: its cross receptances change sign);
-4. for the wheels the screen finds unstable: simulate (the time loop confirms or overrules the
-   screen: squeal is L_F2 >= 10 dB, SPEC 6), radiate and listen, and the mitigation what-ifs
-   (``mitigation.py``);
+4. the time loop (simulate) for every wheel with lateral creepage: it confirms or overrules the
+   screen (squeal is L_F2 >= 10 dB, SPEC 6; a stable wheel's run decays within a second or two);
+   for the squealing wheels radiate and listen, and the mitigation what-ifs (``mitigation.py``);
 5. ``build/curves/<curve>/verdict.csv`` (one row per wheel), ``verdict.md`` (read first) and
    ``bogie.png`` (the bogie in the curve with its contact points), all written atomically.
 """
@@ -85,8 +85,9 @@ def screen_wheel(name: str, gamma_y: float) -> tuple:
 
 
 def wheel_verdict(info: CurveInfo, p: WheelPoint, *, what_ifs: bool = True) -> dict:
-    """One verdict.csv row: the stages for the wheel's case, the screen, and for an unstable wheel the
-    time loop, radiation, listening and the mitigation what-ifs."""
+    """One verdict.csv row: contact, greens and the screen for the wheel's case; the time loop (the
+    simulate stage) for every wheel with lateral creepage, confirming or overruling the screen; for a
+    squealing wheel radiation, listening and the mitigation what-ifs."""
     from .mitigation import damping_what_if, friction_what_if
 
     name = f"{info.name}/{p.wheel}"
@@ -96,20 +97,22 @@ def wheel_verdict(info: CurveInfo, p: WheelPoint, *, what_ifs: bool = True) -> d
             "zeta_needed": "", "wav": ""}
     run_stages(name, ["contact", "greens"])
     models, root, label = screen_wheel(name, p.gamma_y)
-    if root is None:
+    if root is not None:
+        row |= {"screen_sigma": float(root.sigma), "screen_f": float(root.f_hz), "screen_mode": label}
+    if p.gamma_y == 0.0:                      # pure rolling: no lateral creep force, nothing to drive squeal
         return row
-    row |= {"screen_sigma": float(root.sigma), "screen_f": float(root.f_hz), "screen_mode": label}
-    run_stages(name, ["simulate", "radiate", "listen"])
+    run_stages(name, ["simulate"])            # the time loop confirms (or overrules) the screen's verdict
     d = paths.case_dir(name)
     sim = dict(np.load(d / "simulate.npz", allow_pickle=False))
-    rad = dict(np.load(d / "radiate.npz", allow_pickle=False))
-    lis = dict(np.load(d / "listen.npz", allow_pickle=False))
     from solvers.study import nearest_mode, squeals
 
     L_F2, f = float(sim["L_F2"]), float(sim["f_dominant"])
     row["squeals"] = squeals(L_F2)
-    row |= {"L_F2": L_F2, "f_squeal": f}
+    row |= {"L_F2": L_F2, "f_squeal": f if row["squeals"] else math.nan}
     if row["squeals"]:
+        run_stages(name, ["radiate", "listen"])
+        rad = dict(np.load(d / "radiate.npz", allow_pickle=False))
+        lis = dict(np.load(d / "listen.npz", allow_pickle=False))
         w = models.ctx.wheel
         i = nearest_mode(f, w["f"], models.ctx.flexible, 0.05, (1, 2, 3))
         row |= {"mode": models.ctx.label(i) if i is not None else "", "L_W": float(rad["L_W"]),
