@@ -39,25 +39,27 @@ def test_missing_curve_is_one_line(tmp_path):
 
 @pytest.mark.validation
 def test_shipped_curve_end_to_end():
-    """`python -m pipeline curve --curve r150` (the metro vehicle, R = 150 m, 50 km/h, mu = 0.35):
+    """`python -m pipeline curve --curve r75` (the metro vehicle, R = 75 m, 31 km/h, mu = 0.35):
     four wheels in verdict.csv with the curving operating points in the case files, the inner
     leading wheel squealing at a wheel mode, confirmed by the time loop, with its WAV and the
     what-ifs (a friction threshold below the curve's mu; a damping)."""
-    r = run_cli("curve", "--curve", "r150", "--no-progress")
+    r = run_cli("curve", "--curve", "r75", "--no-progress")
     assert r.returncode == 0, r.stderr[-2000:]
-    out = ROOT / "build" / "curves" / "r150"
+    out = ROOT / "build" / "curves" / "r75"
     rows = {row["wheel"]: row for row in csv.DictReader(open(out / "verdict.csv"))}
     assert set(rows) == {"a1o", "a1i", "a2o", "a2i"}
     from pipeline.config import load
     from pipeline.curving import solve_curve
     from pipeline.schemas import CASE
 
-    sol = {w.wheel: w for w in solve_curve("r150").wheels}
+    sol = {w.wheel: w for w in solve_curve("r75").wheels}
     for wid, row in rows.items():
         c = load(out / "cases" / f"{wid}.toml", CASE)
         assert c["contact"]["dy_wr"] == pytest.approx(sol[wid].dy_wr, abs=1e-12)
         assert c["kinematics"]["gamma_y"] == pytest.approx(sol[wid].gamma_y, abs=1e-15)
         assert float(row["gamma_y"]) == pytest.approx(sol[wid].gamma_y, rel=1e-5)
+    for row in rows.values():                                # the time loop confirms the screen here
+        assert (row["screen_sigma"] != "") == (row["squeals"] == "1"), row
     a1i = rows["a1i"]
     assert a1i["squeals"] == "1" and float(a1i["L_F2"]) >= 10.0
     assert a1i["mode"].endswith(",a)")                       # an axial wheel mode
