@@ -77,7 +77,7 @@ ifeq ($(filter-out all report,$(or $(MAKECMDGOALS),all)),)
   # needing nothing, would be that job (order only: the contact does not read the modes)
   $(C)/contact.npz: | $(W)/modes.npz
 endif
-.PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate stability stability-map listen report study check calibrate calibrate-profiles calibrate-coupling calibrate-wheel calibrate-suspension clean distclean FORCE
+.PHONY: all help setup test validate bench mesh modes rail contact greens simulate radiate stability stability-map listen report study curve check calibrate calibrate-profiles calibrate-coupling calibrate-wheel calibrate-suspension clean distclean FORCE
 .DELETE_ON_ERROR:
 
 all: report ## run the default case as far as the stages exist (wheel, rail, contact, greens, simulate, radiate, report)
@@ -209,6 +209,27 @@ study: | $(STAMP) ## parameter study STUDY=map|damping|contact on Dask -> build/
 stability-map: | $(STAMP) ## the stability screen over STUDY's grid (seconds; needs the cases' contact and greens) [QUICK=1]
 	@for c in $(STUDY_CASES); do $(MAKE) --no-print-directory contact greens CASE=$$c || exit 1; done
 	$(PY) -m pipeline stability_map --study $(STUDY) $(if $(QUICK),--quick)
+
+# --- a curve's verdict: CURVE=<name> (pipeline/curves/<name>.toml; it names the vehicle, whose file
+# geometry/vehicles/<vehicle>.toml names the wheel; the curve names the rail).  The wheel modes and the rail
+# first (their own rules), then the curve stage: curving, the wheels' case files, contact/greens/screen for
+# every wheel, the time loop, radiation and listening for the unstable ones, the what-ifs
+CURVE   ?=
+CURVE_F  = pipeline/curves/$(CURVE).toml
+TOML_KEY = $(shell sed -n 's/^$(1) *= *"\([^"]*\)".*/\1/p' $(2) 2>/dev/null | head -1)
+VEHICLE  = $(call TOML_KEY,vehicle,$(CURVE_F))
+VEHICLE_F = geometry/vehicles/$(VEHICLE).toml
+CURVE_WHEEL = $(or $(call TOML_KEY,wheel,$(VEHICLE_F)),c20)
+CURVE_RAIL  = $(or $(call TOML_KEY,rail,$(CURVE_F)),bv50)
+$(BUILD)/curves/$(CURVE)/verdict.csv: $(CURVE_F) $(wildcard $(VEHICLE_F)) $(PROFILES) $(DEPS_curve) | $(STAMP)
+	@$(MAKE) --no-print-directory $(BUILD)/wheels/$(CURVE_WHEEL)/modes.npz $(BUILD)/rails/$(CURVE_RAIL)/rail.npz \
+	  WHEEL=$(CURVE_WHEEL) RAIL=$(CURVE_RAIL) CASE=default
+	$(PY) -m pipeline curve --curve $(CURVE) $(if $(NO_WHAT_IFS),--no-what-ifs)
+
+curve: ## the verdict of CURVE=<name>: which wheel squeals, f, L_pA, what would stop it -> build/curves/CURVE/verdict.{csv,md}, bogie.png
+	@test -n "$(CURVE)" || { echo "make curve: name the curve, CURVE=<name> (one of: $(notdir $(basename $(wildcard pipeline/curves/*.toml))))" >&2; exit 2; }
+	@test -f "$(CURVE_F)" || { echo "make curve: $(CURVE_F): no such curve file (available: $(notdir $(basename $(wildcard pipeline/curves/*.toml))))" >&2; exit 2; }
+	@$(MAKE) --no-print-directory $(BUILD)/curves/$(CURVE)/verdict.csv CURVE=$(CURVE)
 
 # --- calibration of what the thesis does not give (docs/validation, "Calibration"); in this order,
 # each writes its values into the data files (comments kept); none runs in `make` or `make test`

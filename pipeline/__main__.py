@@ -40,12 +40,14 @@ def _main(argv=None) -> int:
                     "(default: default)")
     ap.add_argument("--workers", type=int, default=None,
                     help="processes for the harmonic solves, Dask workers of a study's local cluster (default: cores)")
+    ap.add_argument("--curve", default=None, help="curve: curve file pipeline/curves/<name>.toml")
+    ap.add_argument("--no-what-ifs", action="store_true", help="curve: skip the mitigation what-ifs")
     ap.add_argument("--study", default="map", help="study file pipeline/studies/<name>.toml (default: map)")
     ap.add_argument("--quick", action="store_true", help="study: the coarser grid / shorter runs for a quick look")
     ap.add_argument("--scheduler", default=None, help="study: address of a Dask scheduler (tcp://host:port) "
                                                       "instead of a local cluster")
     ap.add_argument("--out", default=None, help="study: output folder (default build/studies/<study>[-quick])")
-    ap.add_argument("--no-progress", action="store_true", help="study: no progress bar")
+    ap.add_argument("--no-progress", action="store_true", help="study, curve: no progress bar")
     ap.add_argument("--distance", type=float, default=None,
                     help="listen: receiver from the track centre (m; default: the case's [listener], 7.5)")
     ap.add_argument("--height", type=float, default=None,
@@ -78,6 +80,13 @@ def _main(argv=None) -> int:
             from .check import run_check
 
             print("\n".join(run_check(args.case, args.wheel, args.rail)))
+        elif args.stage == "curve":
+            from .verdict.stage import run_curve
+
+            if not args.curve:
+                raise ConfigError("--curve", detail="the curve stage needs --curve <name> (pipeline/curves/<name>.toml)")
+            res = run_curve(args.curve, progress_bar=not args.no_progress, what_ifs=not args.no_what_ifs)
+            print(res["paths"]["md"])
         elif args.stage == "stability_map":
             from .study.screen import run_stability_map
 

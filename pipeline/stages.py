@@ -3,7 +3,7 @@ source dependencies (``pipeline/deps.py``) both read it.
 
 Standard library only: ``pipeline/deps.py`` imports it under /usr/bin/python3 before the venv
 exists.  A stage's entry is ``pipeline.<module>.<function>(<input name>)``; ``takes`` is the input
-it is run on (``wheel``, ``rail``, ``case``, ``study``, or None); ``numba`` marks the stages that run
+it is run on (``wheel``, ``rail``, ``case``, ``study``, ``curve``, or None); ``numba`` marks the stages that run
 numba code (``pipeline/numba_setup.py``); ``make`` those whose artifacts Make tracks (deps.py
 writes their ``DEPS_<stage>``).
 """
@@ -48,6 +48,9 @@ STAGES: dict[str, Stage] = {
                     "listen.*", "listen_stage", "run_listen", "case", numba=True),
     "report": Stage("gather the case's results (wheel, rail, contact, Green's functions, interaction) -> "
                     "build/report/<case>/report.md", "report", "run_report", "case"),
+    "curve": Stage("the verdict of a curve (--curve): every wheel of the leading bogie screened, the unstable ones "
+                   "simulated, radiated, heard; what would stop it -> build/curves/<curve>/verdict.csv, .md, bogie.png",
+                   "verdict.stage", "run_curve", "curve", numba=True),
     "check": Stage("everything a later stage would refuse, before any work (files, friction, profiles, contact point, "
                    "time step)", make=False),
     "study": Stage("a parameter study on Dask (SPEC 7): --study map|damping|contact -> build/studies/<study>/",

@@ -1,0 +1,200 @@
+"""Published field observations of curve squeal, each with its source, and the tool's verdict for
+the closest configuration it can model, side by side (docs/validation/92_field.md).
+
+Only what the sources state is entered; what a source does not state (in the text that could be
+read: abstracts and excerpts, cited by address) is ``None`` and shows as "n/s".  Nothing is fitted
+to these observations.  ``model`` names the closest configuration the tool can model: the
+base curve (its vehicle, rail and friction), radius (m) and speed (km/h; None: the design rule's of
+``pipeline.verdict.radius``, whose cant rule holds for all) -- a verdict of the curve stage there.
+The project ships a metro vehicle on the C20 wheel and a freight bogie: every observation here is
+compared with the metro vehicle (trams and other cars differ in wheel, bogie and load: stated).
+
+    .venv/bin/python -m pipeline.verdict.field     # runs (or reuses) the verdicts, writes 92_field.md
+"""
+from __future__ import annotations
+
+import math
+
+# one dict per observation: source (author, year, journal/report, address), vehicle, radius_m, speed_kmh,
+# f_hz (text), level (text, with distance and metric), note, model = (vehicle, radius_m, speed_kmh) or None
+OBSERVATIONS = [
+    {"key": "stockholm",
+     "source": "'Monitoring of rail corrugation growth due to irregular wear on a railway metro curve', journal "
+               "article, 2009, Chalmers (research.chalmers.se/publication/111664)",
+     "vehicle": "Stockholm metro (C20 wheels: Zenzerovic 2014, sec. 4.1.2)", "radius_m": 120.0, "speed_kmh": 30.0,
+     "f_hz": None, "level": None,
+     "note": "in dry weather the pass-by discomfort is linked to the occurrence of wheel squeal; train speeds about "
+             "30 km/h", "model": ("r150", 120.0, 30.0)},
+    {"key": "rudd",
+     "source": "Rudd, 1976, 'Wheel/rail noise - Part II: Wheel squeal', J. Sound Vib. 46(3) 381-394 (as cited by "
+               "Zenzerovic 2014, ch. 2)",
+     "vehicle": "rail transit cars", "radius_m": None, "speed_kmh": None, "f_hz": None,
+     "level": "up to 130 dB at 0.9 m from the wheel (sound pressure level)",
+     "note": "squeal expected where curve radius / bogie wheelbase < 100", "model": ("r150", 150.0, 50.0)},
+    {"key": "tram-clda",
+     "source": "Shock and Vibration 2014, article 473720, constrained layer damper for a tram "
+               "(hindawi.com/journals/sv/2014/473720)",
+     "vehicle": "tram with resilient wheels", "radius_m": None, "speed_kmh": None, "f_hz": "780-800",
+     "level": None, "note": "squeal in the small-radius curves of the line, reduced by tuned dampers on the wheels",
+     "model": ("r150", 50.0, None)},
+    {"key": "wiki-tram",
+     "source": "German Wikipedia, 'Kurvenquietschen' (secondary source; its literature: Hubner 1973, dissertation "
+               "TU Berlin; Lipinsky), as stored at de.zxc.wiki/wiki/Kurvenquietschen",
+     "vehicle": "tram", "radius_m": None, "speed_kmh": 14.0, "f_hz": "1572-1578",
+     "level": "130 dB(A) at the inner wheel rim, axial direction, 20 km/h (85 dB(A) at the outer wheel rim)",
+     "note": "about 1578 Hz at 14 km/h and 1572 Hz at 28 km/h; main range 1500-6000 Hz",
+     "model": ("r150", 50.0, 15.0)},
+    {"key": "meehan",
+     "source": "Meehan & Liu, 2018, 'Modelling and mitigation of wheel squeal noise amplitude', J. Sound Vib. 413 "
+               "144-158",
+     "vehicle": "in-service trains (field case study)", "radius_m": 300.0, "speed_kmh": None, "f_hz": None,
+     "level": None, "note": "many field recordings of squeal on a 300 m curve; the level rises with the angle of "
+                            "attack", "model": ("r150", 300.0, None)},
+    {"key": "jrc2012",
+     "source": "Joint Rail Conference 2012 (ASME), proceedings abstract "
+               "(asmedigitalcollection.asme.org/JRC/proceedings-abstract/JRC2012/44656/161)",
+     "vehicle": "n/s", "radius_m": 300.0, "speed_kmh": None, "f_hz": None, "level": None,
+     "note": "a threshold lateral creepage of 0.0045 is suggested; curves of radius above 300 m should not squeal",
+     "model": ("r150", 500.0, None)},
+    {"key": "fourie",
+     "source": "'Experimental characterisation of railway wheel squeal occurring in large-radius curves', 2016, "
+               "TRID record 1416976 (trid.trb.org/view/1416976)",
+     "vehicle": "heavy-haul ore wagons (trailing inner wheels)", "radius_m": 1000.0, "speed_kmh": None,
+     "f_hz": None, "level": None,
+     "note": "squealing wheels under predominantly longitudinal creepage (> 1 %), little or no lateral creepage",
+     "model": ("r150", 1000.0, None)},
+    {"key": "thompson",
+     "source": "Thompson, 2009, Railway Noise and Vibration, Elsevier, ch. 9 (as cited by Zenzerovic 2014, ch. 2)",
+     "vehicle": "guideline (all vehicles)", "radius_m": 200.0, "speed_kmh": None, "f_hz": "250-5000 (main tones)",
+     "level": None, "note": "R <= 200 m: squeal common; 200-500 m: sporadic; >= 500 m: mostly none",
+     "model": ("r150", 200.0, None)},
+    {"key": "verheijen",
+     "source": "Verheijen & van Beek, 2019, 'Clarifications and refinements to squeal noise in CNOSSOS', "
+               "Inter-Noise 2019, 259(8) 1990-1997",
+     "vehicle": "trams", "radius_m": 200.0, "speed_kmh": None, "f_hz": None, "level": None,
+     "note": "trams do not tend to squeal in curves with radii over 200 m", "model": ("r150", 200.0, None)},
+    {"key": "staiano",
+     "source": "Staiano & Sastry, 1990, 'Control of wheel squeal noise in rail transit cars', Transportation Research "
+               "Record 1255, 23-35",
+     "vehicle": "Washington Metro transit cars (yard curves)", "radius_m": None, "speed_kmh": None, "f_hz": None,
+     "level": "23 dB(A) lower with a rail-head facing, squeal eliminated (first week)",
+     "note": "small-radius yard curves; water on the rails stopped the squeal", "model": ("r150", 75.0, 15.0)},
+]
+
+
+def fmt(x, spec=".0f", unit=""):
+    if x is None or (isinstance(x, float) and not math.isfinite(x)):
+        return "n/s"
+    return f"{x:{spec}}{unit}" if not isinstance(x, str) else x
+
+
+def table_markdown(verdicts: dict) -> str:
+    """The side-by-side table; ``verdicts``: model tuple -> {'squeals', 'wheel', 'f', 'mode', 'L_pA', 'screen'}."""
+    rows = ["| source | vehicle | R (m) | V (km/h) | measured f (Hz) | measured level | tool: closest configuration | "
+            "tool: squeals (wheel) | tool f (Hz), mode | tool L_pA at 7.5 m | difference |",
+            "|" + "---|" * 11]
+    for o in OBSERVATIONS:
+        v = verdicts.get(o["model"]) if o["model"] else None
+        conf = (f"C20 metro ({o['model'][0]}), R = {o['model'][1]:g} m, {v['V']:g} km/h" if v else "-")
+        if v is None:
+            tool = ("not run", "-", "-")
+        else:
+            tool = (f"yes ({v['wheel']})" if v["squeals"] else ("no (screen unstable, quiet time loop)"
+                                                                 if v.get("screen") else "no"),
+                    f"{v['f']:.0f}, {v['mode']}" if v["squeals"] else "-",
+                    f"{v['L_pA']:.1f} dB(A)" if v["squeals"] and math.isfinite(v["L_pA"]) else "-")
+        rows.append(f"| {o['source']} | {o['vehicle']} | {fmt(o['radius_m'])} | {fmt(o['speed_kmh'])} | "
+                    f"{fmt(o['f_hz'])} | {fmt(o['level'])} | {conf} | {tool[0]} | {tool[1]} | {tool[2]} | "
+                    f"{difference(o, v)} |")
+    return "\n".join(rows)
+
+
+def difference(o: dict, v: dict | None) -> str:
+    """The difference in words: occurrence, frequency (when both are given), and what cannot be compared."""
+    if v is None:
+        return "not compared (the configuration was not run)"
+    parts = []
+    if o["f_hz"] and v["squeals"]:
+        lo, hi = (float(x) for x in (o["f_hz"].split()[0].split("-") * 2)[:2])
+        f = v["f"]
+        parts.append("f inside the measured range" if lo <= f <= hi else
+                     f"f {f - (lo if f < lo else hi):+.0f} Hz outside the measured range")
+    if o["level"] and v["squeals"] and "0.9 m" in o["level"]:
+        parts.append("levels at other distances: not compared")
+    occ = "squeal" in o["note"] and ("should not" in o["note"] or "do not" in o["note"] or "mostly none" in o["note"])
+    if occ:
+        parts.append("the source expects no squeal here; the tool " + ("agrees" if not v["squeals"] else "disagrees"))
+    elif not parts:
+        parts.append("the tool " + ("squeals" if v["squeals"] else "does not squeal") +
+                     "; the source gives no f or level to compare")
+    return "; ".join(parts)
+
+
+def verdict_of(run: dict) -> dict:
+    """The loudest wheel's verdict of a curve run (``radius.curve_verdict``), or the quiet summary."""
+    rows = run["rows"]
+    sq = [r for r in rows if r["squeals"]]
+    loud = max(sq, key=lambda r: r["L_pA"] if math.isfinite(r["L_pA"]) else -1e9) if sq else None
+    return {"V": run["V"], "squeals": loud is not None, "wheel": loud["wheel"] if loud else "",
+            "f": loud["f_squeal"] if loud else math.nan, "mode": loud["mode"] if loud else "",
+            "L_pA": loud["L_pA"] if loud else math.nan,
+            "screen": any(math.isfinite(r["screen_sigma"]) for r in rows)}
+
+
+def main(argv=None) -> int:
+    import argparse
+    import logging
+    import sys
+    from pathlib import Path
+
+    from .. import paths
+    from ..atomic import save_text
+    from ..config import ConfigError
+    from .radius import curve_verdict
+
+    ap = argparse.ArgumentParser(prog="python -m pipeline.verdict.field", description=__doc__.split("\n\n")[0])
+    ap.add_argument("--rerun", action="store_true", help="run every curve again (default: reuse newer verdicts)")
+    args = ap.parse_args(argv)
+    logging.basicConfig(level=logging.INFO, format="%(levelname)s %(name)s: %(message)s")
+    folder = paths.build() / "studies" / "radius" / "curves"
+    verdicts = {}
+    try:
+        for o in OBSERVATIONS:
+            m = o["model"]
+            if m and m not in verdicts:
+                verdicts[m] = verdict_of(curve_verdict(m[0], folder, m[1], m[2], reuse=not args.rerun))
+    except ConfigError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+    md = ("## Against the field: published observations of curve squeal\n\n"
+          "Published field observations (vehicle, curve radius, speed, measured squeal frequency and level with "
+          "its distance and metric, as far as the source states them; n/s: not stated in the text that could be "
+          "read) beside the curve stage's verdict (`make curve`) for the closest configuration the tool can model: "
+          "the C20 metro vehicle (`geometry/vehicles/c20_metro.toml`) on the BV50 rail with mu = 0.35, at the "
+          "observation's radius and speed (the design rule's speed and cant of `pipeline/verdict/radius.py` where "
+          "the source gives none).  Nothing is fitted to these observations; the differences are stated.\n\n"
+          + table_markdown(verdicts) + "\n\n" + NOTES +
+          "\nWritten by `.venv/bin/python -m pipeline.verdict.field`.\n")
+    save_text(md, Path(paths.ROOT) / "docs" / "validation" / "92_field.md")
+    print(md)
+    return 0
+
+
+NOTES = """What the comparison can and cannot say:
+
+* Occurrence: the sources that state where squeal is (not) expected (radius rules) are compared with the
+  tool's verdict at those radii; one metro vehicle and one friction coefficient cannot stand for the spread of
+  vehicles, wheel profiles and rail conditions behind those rules.
+* Frequency: the tool's squeal frequency is a C20 wheel mode; a tram's resilient wheel or another wheel
+  squeals at its own modes, so a frequency difference there reflects the wheel, not the model.
+* Level: L_pA at 7.5 m and 1.2 m (ISO 3095 position) of the squealing wheel alone; levels measured at other
+  distances (0.9 m from the wheel) or as reductions by a measure are not converted.
+* Mechanism: squeal from longitudinal creepage on large radii (ore wagons at 1000 m) is outside what the
+  lateral-creepage screen looks for.
+"""
+
+
+if __name__ == "__main__":
+    import sys
+
+    sys.exit(main())
