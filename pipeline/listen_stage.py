@@ -134,7 +134,7 @@ def compute_listening(case: str, distance=None, height=None, allow_silent: bool 
     squeal = bool(a["meaningful"])
     if not squeal and not allow_silent:
         raise ConfigError(str(paths.case_file(case)), detail=(
-            f"case {case!r} does not squeal: L_F2 = {float(a['L_F2']):.1f} dB < 10 dB (SPEC 6; the simulation "
+            f"case {case!r} does not squeal: L_F2 = {float(a['L_F2']):.1f} dB < 10 dB (docs/physics.md section 6; the simulation "
             f"stopped: {a['stop_reason']}), so there is no squeal to listen to. `--allow-silent` "
             f"(make listen ALLOW_SILENT=1) writes the levels and a silent WAV."))
     f, W, tone = a["f"], a["W"], a["is_tone"].astype(bool)

@@ -133,10 +133,10 @@ def radiate_section(case: str, figdir) -> str:
                     f"{a['harmonic_f_peak'][i]:.1f} | {a['harmonic_mode_label'][i]} | {a['harmonic_mode_f'][i]:.1f} |"
                     if a["W_total"] > 0 else f"| {n} | -inf | - | - | - | - |")
     flag = ("" if a["meaningful"] else
-            f" L_F2 = {float(a['L_F2']):.1f} dB < 10 dB: no squeal, the sound power is not meaningful (SPEC 6).")
+            f" L_F2 = {float(a['L_F2']):.1f} dB < 10 dB: no squeal, the sound power is not meaningful (docs/physics.md section 6).")
     return f"""## Sound radiation
 
-Thompson-Jones model (SPEC 5) driven by the final {float(a['stretch_s']):.2f} s of F2, F3: {len(a['tone_f'])} tones
+Thompson-Jones model (docs/physics.md section 5) driven by the final {float(a['stretch_s']):.2f} s of F2, F3: {len(a['tone_f'])} tones
 fitted at their own frequencies plus the Hann-windowed residual.{flag}
 Overall L_W = {float(a['L_W']):.1f} dB re 1e-12 W; loudest at {float(a['f_sound']):.1f} Hz, the
 {a['sound_mode_label']} mode ({float(a['sound_mode_f']):.1f} Hz); dominant force frequency {float(a['f_dominant']):.1f} Hz.
