@@ -72,9 +72,25 @@ Receptances at the rail-head points {pts}; vertical point receptance at {f[i300]
 """
 
 
-def contact_section(case: str, cfg: dict, figdir) -> str:
+def contact_section(case: str, cfg: dict, figdir, c: dict | None = None) -> str:
+    """The contact; the friction curves redrawn with the case's operating slip marked (``c``: the case)."""
     a, _ = artifacts.load_npz(paths.case_dir(case) / "contact.npz", "contact", cfg, make_target=f"contact CASE={case}")
-    shutil.copy2(paths.case_dir(case) / "contact_rf.png", figdir / f"{case}_contact_rf.png")
+    op = ""
+    if c is not None:
+        from postprocess.plots.contact import friction_curves_figure, operating_point
+
+        from .atomic import save_figure
+
+        kin = c["kinematics"]
+        s_op, mu_op = operating_point(a, kin["speed"], kin["gamma_y"], kin.get("gamma_x", 0.0), c["friction"]["mu"])
+        save_figure(friction_curves_figure(a, f"{case}: dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm",
+                                           operating=(s_op, c["friction"]["mu"])), figdir / f"{case}_contact_rf.png",
+                    dpi=100)
+        op = (f" The case rolls at the slip s = |gamma| v = {s_op:.3f} m/s (gamma_y = {kin['gamma_y']:g}, "
+              f"v = {3.6 * kin['speed']:.0f} km/h)" + (f", where mu_RF = {mu_op:.3f} of mu = {c['friction']['mu']:g}"
+                                                      if np.isfinite(mu_op) else "") + " (marked).")
+    else:
+        shutil.copy2(paths.case_dir(case) / "contact_rf.png", figdir / f"{case}_contact_rf.png")
     p = a["p3_static"]
     ncontact = int((p > 0).sum())
     return f"""## Contact
@@ -82,7 +98,7 @@ def contact_section(case: str, cfg: dict, figdir) -> str:
 Nominal contact point y^W = {1e3 * float(a['y_wheel']):+.0f} mm on the tread, y^R = {1e3 * float(a['y_rail']):+.0f} mm on
 the rail head; grid {len(a['x'])} x {len(a['y'])} elements of {1e3 * float(a['dx']):.2f} x {1e3 * float(a['dy']):.2f} mm
 (dx = v dt). Static preload: approach {1e6 * float(a['xi3_static']):.1f} um, {ncontact} elements in contact,
-peak pressure {float(p.max()) / 1e9:.2f} GPa. Regularized friction curves (Kalker's TANG, steady state):
+peak pressure {float(p.max()) / 1e9:.2f} GPa. Regularized friction curves (Kalker's TANG, steady state).{op}
 
 ![friction curves](figures/{case}_contact_rf.png)
 """
@@ -96,10 +112,10 @@ def greens_section(case: str, figdir) -> str:
     shutil.copy2(paths.case_dir(case) / "greens.png", figdir / f"{case}_greens.png")
     return f"""## Green's functions
 
-Wheel: {len(a['wheel_f'])} modes at the contact point, Kropp's grid N_t = {int(a['wheel_nt'])} ({int(a['wheel_nt']) * float(a['dt']):.0f} s,
-decayed to {float(a['wheel_decay_db']):.0f} dB); the time loop uses the equivalent recursive modal filters. Rail: moving Green's
-function over {len(a['rail_kernel'])} lags ({len(a['rail_kernel']) * float(a['dt']) * 1e3:.0f} ms), its tail at
-{float(a['rail_tail_ratio']):.1e} of the peak.
+Wheel: {len(a['wheel_f'])} modes at the contact point; Kropp's grid of N_t = {int(a['wheel_nt'])} samples of dt =
+{1e6 * float(a['dt']):.0f} us (the kernel has decayed to {float(a['wheel_decay_db']):.0f} dB within N_t / 2 samples); the time
+loop uses the equivalent recursive modal filters. Rail: moving Green's function of {len(a['rail_kernel'])} lags of dt, its
+tail at {float(a['rail_tail_ratio']):.1e} of the peak.
 
 ![Green's functions](figures/{case}_greens.png)
 """
@@ -147,21 +163,66 @@ Overall L_W = {float(a['L_W']):.1f} dB re 1e-12 W; loudest at {float(a['f_sound'
 """
 
 
+def stability_section(case: str, figdir) -> str:
+    """The stability screen (pipeline/stability_stage.py): every closed-loop pole, fastest first."""
+    from .report_headline import stability_of
+
+    head = "## Stability screen\n\n"
+    st = stability_of(case)
+    if st is None:
+        return head + f"Not computed (or stale): `make stability CASE={case}` (then `make report CASE={case}`).\n"
+    shutil.copy2(paths.case_dir(case) / "stability.png", figdir / f"{case}_stability.png")
+    order = np.argsort(-st["sigma"])
+    rows = ["| pole | f (Hz) | growth rate sigma (1/s) | open-loop f (Hz) |", "|---|---:|---:|---:|"]
+    for k in order:
+        fo = float(st["f_open"][k])
+        rows.append(f"| {st['label'][k]} | {float(st['f_hz'][k]):.1f} | {float(st['sigma'][k]):+.3f} | "
+                    f"{fo:.1f} |" if np.isfinite(fo) else
+                    f"| {st['label'][k]} (wheelset on the track) | {float(st['f_hz'][k]):.1f} | "
+                    f"{float(st['sigma'][k]):+.3f} | - |")
+    unstable = [str(st["label"][k]) for k in order if st["sigma"][k] > 0]
+    return head + f"""The time loop linearised about steady rolling (mu_RF = {float(st['mu0']):.3f}, slope {float(st['dmu']):.3g} s/m at
+the operating slip): {len(order)} closed-loop poles, {len(unstable)} growing ({', '.join(unstable) or 'none'}). A growing pole is a
+mode that can squeal; the time loop decides which one wins and how loud.
+
+![closed-loop poles](figures/{case}_stability.png)
+
+{chr(10).join(rows)}
+"""
+
+
 def listen_section(case: str, figdir) -> str:
-    """'What a listener hears' (pipeline/listen_stage.py), when `make listen` has run for the
-    current radiate and simulate artifacts; the spectrum and the WAV copied beside the report."""
-    from .listen_stage import load_listening
+    """'What a listener hears' (pipeline/listen_stage.py): every receiver computed, side by side, and the
+    case's own one in detail (its spectrum, bands, WAV), when `make listen` has run for the current
+    radiate and simulate artifacts; its files copied beside the report."""
+    from .listen_stage import listen_files, listener_inputs, load_listening, receiver_tag, receivers
 
     head = "## What a listener hears\n\n"
-    if not (paths.case_dir(case) / "listen.npz").exists():
+    tags = receivers(case)
+    if not tags:
         return head + f"Not computed yet: `make listen CASE={case}` (then `make report CASE={case}`).\n"
-    try:
-        a, _ = load_listening(case)
-    except artifacts.ArtifactError as e:
-        return head + f"Not shown: {e}\n"
-    cdir = paths.case_dir(case)
-    for name in ("listen.png", "listen.wav", "listen.json"):
-        shutil.copy2(cdir / name, figdir / f"{case}_{name}")
+    found, notes = {}, []
+    for tag in tags:
+        try:
+            found[tag] = load_listening(case, tag)[0]
+        except artifacts.ArtifactError as e:
+            notes.append(f"Receiver {tag} not shown: {e}")
+    if not found:
+        return head + "\n".join(notes) + "\n"
+    lis = listener_inputs(case)[2]
+    own = receiver_tag(lis["distance"], lis["height"])
+    tag = own if own in found else next(iter(found))
+    a = found[tag]
+    side = ["| receiver | distance (m) | height (m) | L_p (dB) | L_pA (dB(A)) | L_pA, ground incoherent | loudest (Hz) |",
+            "|---|---:|---:|---:|---:|---:|---:|"]
+    for t_, b in found.items():
+        side.append(f"| {t_}{' (the case' + chr(39) + 's)' if t_ == own else ''} | {float(b['distance']):g} | "
+                    f"{float(b['height']):g} | {float(b['L_p']):.1f} | {float(b['L_pA']):.1f} | "
+                    f"{float(b['L_pA_incoherent']):.1f} | {float(b['f_peak']):.1f} |")
+    files = listen_files(case, tag)
+    names = {k: f"{case}_{files[k].name}" for k in ("png", "wav", "json", "bands")}
+    for k, name in names.items():
+        shutil.copy2(files[k], figdir / name)
     sel = np.isfinite(a["band_L_p"]) & (a["band_L_p"] >= float(a["L_p"]) - 40)
     rows = ["| band (Hz) | " + " | ".join(f"{v:g}" for v in a["band_nominal"][sel]) + " |",
             "|---|" + "---:|" * int(sel.sum())]
@@ -169,7 +230,10 @@ def listen_section(case: str, figdir) -> str:
         rows.append(f"| {name} | " + " | ".join(f"{v:.1f}" for v in a[key][sel]) + " |")
     flag = ("" if a["meaningful"] else f" The case does not squeal (L_F2 = {float(a['L_F2']):.1f} dB < 10 dB): the "
             "levels are those of its non-squealing forces and the WAV is silent.")
-    return head + f"""Receiver {float(a['distance']):g} m from the track centre, {float(a['height']):g} m above the top of the rail
+    return head + f"""{chr(10).join(side)}
+
+{' '.join(notes)}
+Receiver {tag}: {float(a['distance']):g} m from the track centre, {float(a['height']):g} m above the top of the rail
 (the squealing wheel's centre {float(a['r_direct']):.2f} m away; {a['ground']} ground {float(a['ground_depth']):g} m below
 the rail, image source; {'a dipole along the axle' if str(a['directivity']) == 'dipole' else 'omnidirectional'};
 air absorption ISO 9613-1).{flag}
@@ -177,42 +241,47 @@ L_p = {float(a['L_p']):.1f} dB, **L_pA = {float(a['L_pA']):.1f} dB(A)** (ground 
 {float(a['L_p_incoherent']):.1f} dB, {float(a['L_pA_incoherent']):.1f} dB(A)); loudest at {float(a['f_peak']):.1f} Hz
 (sound power peak {float(a['f_sound']):.1f} Hz). A pure tone over a rigid ground interferes with its reflection:
 the coherent level depends on the exact position, the incoherent one is its average over positions. Bands within
-40 dB of the overall level:
+40 dB of the overall level ([all bands, CSV](figures/{names['bands']})):
 
 {chr(10).join(rows)}
 
-![1/3-octave spectrum at the receiver](figures/{case}_listen.png)
+![1/3-octave spectrum at the receiver](figures/{names['png']})
 
-The sound: [listen.wav](figures/{case}_listen.wav) ({float(a['wav_duration']):.2f} s, 44.1 kHz, 16 bit; the onset from
+The sound: [{files['wav'].name}](figures/{names['wav']}) ({float(a['wav_duration']):.2f} s, 44.1 kHz, 16 bit; the onset from
 the simulation's growth phase, the limit cycle from {float(a['t_limit_cycle']):.2f} s). Calibration
-([listen.json](figures/{case}_listen.json)): a 0 dBFS sine is {float(a['full_scale_sine_dB']):.1f} dB SPL; read back,
+([{files['json'].name}](figures/{names['json']})): a 0 dBFS sine is {float(a['full_scale_sine_dB']):.1f} dB SPL; read back,
 the limit cycle in the file is {float(a['wav_L_p']):.1f} dB at {float(a['wav_f_peak']):.1f} Hz.
 """
 
 
 def run_report(case: str) -> str:
+    from .contact_stage import contact_inputs
+    from .radiate_stage import load_radiation_model, radiate_config
+    from .report_headline import headline, headline_markdown
+    from .simulate_stage import simulate_config
+    from .study.report import studies_section
+
     cpath = paths.case_file(case)
     c = load(cpath, CASE)
     out = paths.build() / "report" / case
     figdir = out / "figures"
     figdir.mkdir(parents=True, exist_ok=True)
-    sections = [f"# Curve squeal report: case `{case}`\n\n{c['description']}\n\n"
+    cdir = paths.case_dir(case)
+    sim, _ = artifacts.load_npz(cdir / "simulate.npz", "simulate", simulate_config(case)[-1],
+                                make_target=f"simulate CASE={case}")
+    rad, _ = artifacts.load_npz(cdir / "radiate.npz", "radiate", radiate_config(case, load_radiation_model(case))[1],
+                                make_target=f"radiate CASE={case}")
+    h = headline(case, sim, rad)
+    sections = [f"# Curve squeal report: case `{case}`\n\n{headline_markdown(h)}\n{c['description']}\n\n"
                 f"Case file `{paths.shown(cpath)}`: wheel `{c['wheel']}`, rail `{c['rail']}`, dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm, "
-                f"mu = {c['friction']['mu']}, gamma_y = {c['kinematics']['gamma_y']}, v = {3.6 * c['kinematics']['speed']:.0f} km/h.\n",
-                wheel_section(c["wheel"], figdir), rail_section(c["rail"], figdir)]
-    from .contact_stage import contact_inputs
-
-    sections.append(contact_section(case, contact_inputs(case)[3], figdir))
-    sections.append(greens_section(case, figdir))
-    sections.append(simulate_section(case, figdir))
-    sections.append(radiate_section(case, figdir))
-    sections.append(listen_section(case, figdir))
-    from .study.report import studies_section
-
-    sections.append(studies_section(figdir))
+                f"mu = {c['friction']['mu']}, gamma_y = {c['kinematics']['gamma_y']}, v = {3.6 * c['kinematics']['speed']:.0f} km/h. "
+                "The model: `docs/physics.md`; the inputs: `docs/inputs.md`.\n",
+                wheel_section(c["wheel"], figdir), rail_section(c["rail"], figdir),
+                contact_section(case, contact_inputs(case)[3], figdir, c), greens_section(case, figdir),
+                simulate_section(case, figdir), stability_section(case, figdir), radiate_section(case, figdir),
+                listen_section(case, figdir), studies_section(figdir)]
     text = "\n".join(sections)
     with artifacts.atomic_write(out / "report.md") as tmp:
         tmp.write_text(text)
     log.info("report %s -> %s", case, out / "report.md")
     return str(out / "report.md")
-
