@@ -54,12 +54,12 @@ def map_figure(rows: list[dict], gammas, mus, case: str):
         labels[(i, j)] = r["label_max"] if r["sigma_max"] > 0 else ""
     fig, ax = plt.subplots(figsize=(9, 4))
     lim = np.nanmax(np.abs(S)) if np.isfinite(S).any() else 1.0
-    im = ax.pcolormesh(-gammas, mus, S, cmap="RdBu_r", vmin=-lim, vmax=lim, shading="nearest")
+    im = ax.pcolormesh(gammas, mus, S, cmap="RdBu_r", vmin=-lim, vmax=lim, shading="nearest")
     fig.colorbar(im, ax=ax, label="largest growth rate (1/s)")
     for (i, j), lab in labels.items():
         if lab:
-            ax.text(-gammas[j], mus[i], lab.replace("track", "LF"), ha="center", va="center", fontsize=5, rotation=90)
-    ax.set_xlabel("-gamma_y")
+            ax.text(gammas[j], mus[i], lab.replace("track", "LF"), ha="center", va="center", fontsize=5, rotation=90)
+    ax.set_xlabel("gamma_y (lateral creepage, signed)")
     ax.set_ylabel("mu")
     ax.set_title(f"Stability screen, {case}: fastest-growing pole (label where unstable)")
     fig.tight_layout()
