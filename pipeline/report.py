@@ -254,6 +254,22 @@ the limit cycle in the file is {float(a['wav_L_p']):.1f} dB at {float(a['wav_f_p
 """
 
 
+def exports_section(case: str, vtk: dict) -> str:
+    """Where the exported tables and 3D files are (pipeline/exports.py)."""
+    cdir = paths.shown(paths.case_dir(case))
+    return f"""## Exports
+
+- Spectra and bands (CSV, in `{cdir}/`): `radiate_spectrum.csv` (sound power per tone and bin),
+  `radiate_forces.csv` and `radiate_tones.csv` (contact forces), `radiate_bands.csv` (sound power per
+  1/3-octave band), `listen_<receiver>_bands.csv` (levels at each receiver).
+- Noise mapping: `lw_railway.csv`, the squeal as a row of NoiseModelling's railway source table LW_RAILWAY
+  (bands 50 Hz-10 kHz per period; CNOSSOS-EU line source at 0.5 m, rolling-noise directivity, one squealing
+  passage per hour: add 10 lg Q for Q an hour; `postprocess/exports.py`).
+- 3D (ParaView; Warp By Vector): `vtk/{vtk['modes'].name}` (every wheel mode){'' if 'ods' not in vtk else
+    f", `vtk/{vtk['ods'].name}` (the squealing wheel's operating deflection shape, one period, a time series)"}.
+"""
+
+
 def run_report(case: str) -> str:
     from .contact_stage import contact_inputs
     from .radiate_stage import load_radiation_model, radiate_config
@@ -269,8 +285,12 @@ def run_report(case: str) -> str:
     cdir = paths.case_dir(case)
     sim, _ = artifacts.load_npz(cdir / "simulate.npz", "simulate", simulate_config(case)[-1],
                                 make_target=f"simulate CASE={case}")
-    rad, _ = artifacts.load_npz(cdir / "radiate.npz", "radiate", radiate_config(case, load_radiation_model(case))[1],
+    model = load_radiation_model(case)
+    rad, _ = artifacts.load_npz(cdir / "radiate.npz", "radiate", radiate_config(case, model)[1],
                                 make_target=f"radiate CASE={case}")
+    from .exports import case_vtk
+
+    vtk = case_vtk(case, model, rad)
     h = headline(case, sim, rad)
     sections = [f"# Curve squeal report: case `{case}`\n\n{headline_markdown(h)}\n{c['description']}\n\n"
                 f"Case file `{paths.shown(cpath)}`: wheel `{c['wheel']}`, rail `{c['rail']}`, dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm, "
@@ -279,7 +299,7 @@ def run_report(case: str) -> str:
                 wheel_section(c["wheel"], figdir), rail_section(c["rail"], figdir),
                 contact_section(case, contact_inputs(case)[3], figdir, c), greens_section(case, figdir),
                 simulate_section(case, figdir), stability_section(case, figdir), radiate_section(case, figdir),
-                listen_section(case, figdir), studies_section(figdir)]
+                listen_section(case, figdir), exports_section(case, vtk), studies_section(figdir)]
     text = "\n".join(sections)
     with artifacts.atomic_write(out / "report.md") as tmp:
         tmp.write_text(text)
