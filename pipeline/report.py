@@ -303,5 +303,8 @@ def run_report(case: str) -> str:
     text = "\n".join(sections)
     with artifacts.atomic_write(out / "report.md") as tmp:
         tmp.write_text(text)
-    log.info("report %s -> %s", case, out / "report.md")
+    from .report_html import write_html
+
+    write_html(out / "report.md", f"Curve squeal report: {case}")
+    log.info("report %s -> %s, report.html", case, out / "report.md")
     return str(out / "report.md")
