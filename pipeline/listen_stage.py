@@ -272,6 +272,12 @@ def run_listen(case: str, distance=None, height=None, allow_silent: bool = False
     artifacts.save_json(files["json"], "listen-wav", cfg, cal)
     artifacts.save_csv(files["bands"], BAND_COLUMNS, band_rows(arrays))
     artifacts.save_npz(files["npz"], "listen", cfg, **arrays)
+    if arrays["meaningful"]:
+        from .passby_stage import run_passby
+
+        c, _, _, geo = listener_inputs(case, distance, height)
+        rad, _ = artifacts.load_npz(paths.case_dir(case) / "radiate.npz", "radiate")
+        run_passby(case, c, geo, rad, cfg, tag)
     own = listener_inputs(case)[2]
     if (own["distance"], own["height"]) == (float(arrays["distance"]), float(arrays["height"])):
         artifacts.save_npz(paths.case_dir(case) / "listen.npz", "listen", cfg, **arrays)  # Make's target

@@ -201,10 +201,10 @@ def listen_section(case: str, figdir) -> str:
     tags = receivers(case)
     if not tags:
         return head + f"Not computed yet: `make listen CASE={case}` (then `make report CASE={case}`).\n"
-    found, notes = {}, []
+    found, provs, notes = {}, {}, []
     for tag in tags:
         try:
-            found[tag] = load_listening(case, tag)[0]
+            found[tag], provs[tag] = load_listening(case, tag)
         except artifacts.ArtifactError as e:
             notes.append(f"Receiver {tag} not shown: {e}")
     if not found:
@@ -251,6 +251,36 @@ The sound: [{files['wav'].name}](figures/{names['wav']}) ({float(a['wav_duration
 the simulation's growth phase, the limit cycle from {float(a['t_limit_cycle']):.2f} s). Calibration
 ([{files['json'].name}](figures/{names['json']})): a 0 dBFS sine is {float(a['full_scale_sine_dB']):.1f} dB SPL; read back,
 the limit cycle in the file is {float(a['wav_L_p']):.1f} dB at {float(a['wav_f_peak']):.1f} Hz.
+{passby_section(case, tag, figdir, provs[tag]["config_hash"])}"""
+
+
+def passby_section(case: str, tag: str, figdir, listen_hash: str) -> str:
+    """The pass-by at receiver ``tag`` (pipeline/passby_stage.py), when the listen stage wrote it for the
+    listening artifact of hash ``listen_hash``."""
+    from .passby_stage import passby_files
+
+    files = passby_files(case, tag)
+    if not files["npz"].exists():
+        return ""
+    b, prov = artifacts.load_npz(files["npz"], "passby")
+    if prov["config"].get("listen") != listen_hash:
+        return f"\n### Pass-by\n\nNot shown: {files['npz'].name} is stale; run `make listen CASE={case}`.\n"
+    for k in ("png", "wav"):
+        shutil.copy2(files[k], figdir / f"{case}_{files[k].name}")
+    return f"""
+### Pass-by
+
+{int(b['n_bogies'])} squealing wheels (one per bogie, {float(b['bogie_spacing']):g} m apart) passing at
+{3.6 * float(b['speed']):.0f} km/h, heard at receiver {tag} (distance, dipole directivity, Doppler, ground
+reflection and air absorption as above; each wheel with its own phase): **L_pAeq = {float(b['L_Aeq']):.1f} dB(A)**
+over the {float(b['T']):.1f} s passage (the first squealing wheel {float(b['window']):g} m before the receiver to the last
+one {float(b['window']):g} m past it), **L_AFmax = {float(b['L_AFmax']):.1f} dB(A)** (IEC 61672-1 time weighting F),
+L_AE = {float(b['L_AE']):.1f} dB(A). ({100 * float(b['kept_share']):.2f} % of the sound power synthesized: the tones and
+the strongest residual bins.)
+
+![pass-by](figures/{case}_{files['png'].name})
+
+The passage: [{files['wav'].name}](figures/{case}_{files['wav'].name}).
 """
 
 

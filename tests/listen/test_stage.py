@@ -128,7 +128,8 @@ def test_artifact_keys_and_report_section(squeal, tmp_build):
               "full_scale_sine_dB", "t_limit_cycle", "r_direct", "meaningful"):
         assert k in npz, k
     assert prov["config"]["listener"] == {"distance": 7.5, "height": 1.2, "ground_depth": 0.2, "ground": "rigid",
-                                          "directivity": "dipole"}
+                                          "directivity": "dipole",
+                                          "passby": {"n_bogies": 2, "bogie_spacing": 12.5, "window": 30.0}}
     assert float(npz["r_direct"]) == pytest.approx(np.hypot(7.5 - 0.75, 1.2 - 0.39))
     assert (squeal["dir"] / "listen_7.5m.png").stat().st_size > 10_000
     from pipeline.report import listen_section
@@ -176,6 +177,28 @@ def test_receivers_are_kept_side_by_side(squeal, tmp_build):
     assert "| 7.5m (the case's) | 7.5 | 1.2 |" in text and "| 25m | 25 | 1.2 |" in text
     for path in d.glob("listen_25m*"):
         path.unlink()
+
+
+def test_passby_written_beside_the_receiver(squeal, tmp_build):
+    """The pass-by at the case's receiver: its files, and its loudest moment against the listen stage's
+    steady level with the wheel abreast (the same propagation; the second wheel 12.5 m away adds < 3 dB,
+    the F weighting's 125 ms smooths the ground interference)."""
+    d = squeal["dir"]
+    for s in (".npz", ".wav", ".json", ".png"):
+        assert (d / f"passby_7.5m{s}").exists(), s
+    b, prov = artifacts.load_npz(d / "passby_7.5m.npz", "passby")
+    assert prov["config"]["passby"] == {"n_bogies": 2, "bogie_spacing": 12.5, "window": 30.0}
+    assert float(b["T"]) == pytest.approx((60 + 12.5) / (50 / 3.6), abs=1e-3)
+    L_pA = float(squeal["a"]["L_pA"])
+    assert -2.0 < float(b["L_AFmax"]) - L_pA < 3.5
+    assert float(b["L_Aeq"]) < float(b["L_AFmax"])
+    from scipy.io import wavfile
+
+    fs, x = wavfile.read(d / "passby_7.5m.wav")
+    cal = json.loads((d / "passby_7.5m.json").read_text())["payload"]
+    p = x.astype(float) * cal["pa_per_count"]
+    assert fs == 44100 and p.size == pytest.approx(float(b["T"]) * fs, abs=2)
+    assert WC.level(p) == pytest.approx(float(b["L_eq"]), abs=0.05)          # the file holds the passage
 
 
 def _cases_with(tmp_path, monkeypatch, table: str):

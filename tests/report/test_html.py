@@ -92,5 +92,6 @@ def test_default_case_report_in_the_browser():
     assert page["first"] == "H1" and page["blockquote_index"] == 1       # the headline block first
     assert len(page["images"]) >= 8 and all(i["naturalWidth"] > 0 for i in page["images"]), page["images"]
     if (paths.case_dir("default") / "listen.npz").exists():
-        assert len(page["audio"]) == 1 and page["audio"][0]["readyState"] >= 1 and page["audio"][0]["error"] is None
+        assert len(page["audio"]) >= 1                  # the limit cycle, and the pass-by when it was written
+        assert all(a["readyState"] >= 1 and a["error"] is None for a in page["audio"]), page["audio"]
     assert page["errors"] == []
