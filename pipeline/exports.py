@@ -69,8 +69,9 @@ def _save_pvd(path, files: list[tuple[float, str]]) -> None:
 
 
 def _save_vtu(grid, path) -> None:
+    # LZ4 (VTK's vtkLZ4DataCompressor, which ParaView reads): ~10x faster to write than zlib here
     with artifacts.atomic_write(path) as tmp:   # the temporary file keeps the .vtu suffix
-        grid.save(str(tmp), binary=True)
+        grid.save(str(tmp), binary=True, compression="lz4")
 
 
 def write_vtk(case: str, model, rad: dict, out, n_phi: int = 72, n_frames: int = 24) -> dict:
