@@ -20,7 +20,7 @@ From the report (``write_vtk``), in build/report/<case>/vtk/ (ParaView: File > O
 * wheel_modes.vtu: the wheel surface with one displacement array per mode
   (``mode_07_(2,0,a)_434Hz``: unit maximum, the mode's own normalisation);
 * ods.pvd + ods/ods_NN.vtu: the squealing wheel's operating deflection shape at its dominant tone,
-  24 frames over one period (a time series: press play), array ``displacement`` in m (peak).
+  16 frames over one period (a time series: press play), array ``displacement`` in m (peak).
 """
 from __future__ import annotations
 
@@ -74,7 +74,7 @@ def _save_vtu(grid, path) -> None:
         grid.save(str(tmp), binary=True, compression="lz4")
 
 
-def write_vtk(case: str, model, rad: dict, out, n_phi: int = 72, n_frames: int = 24) -> dict:
+def write_vtk(case: str, model, rad: dict, out, n_phi: int = 48, n_frames: int = 16) -> dict:
     """The wheel's mode shapes and the squealing wheel's ODS as VTK files in ``out`` (module
     docstring); ``model``: the case's radiation model (``load_radiation_model``), ``rad``: its
     radiate.npz.  Returns {name: path}."""
@@ -83,6 +83,7 @@ def write_vtk(case: str, model, rad: dict, out, n_phi: int = 72, n_frames: int =
     modes = model.meta["modes"]
     surf = wheel_surface(modes["points"], modes["cells"], n_phi)
     grid = surf.mesh.cast_to_unstructured_grid()
+    grid.points = grid.points.astype(np.float32)
     out.mkdir(parents=True, exist_ok=True)
     for i in range(len(modes["f_hz"])):
         name = f"mode_{i:02d}_{model.label(i)}_{float(modes['f_hz'][i]):.0f}Hz"
@@ -96,6 +97,7 @@ def write_vtk(case: str, model, rad: dict, out, n_phi: int = 72, n_frames: int =
                              model.modal_mass, model.zeta, model.phi)
         th, frames = ods_frames(surf, modes["shapes"], modes["n"], q, n_frames)
         ods = surf.mesh.cast_to_unstructured_grid()
+        ods.points = ods.points.astype(np.float32)
         (out / "ods").mkdir(exist_ok=True)
         files = []
         for j, (t, d) in enumerate(zip(th, frames)):
