@@ -21,6 +21,11 @@ from .schemas import CASE
 log = logging.getLogger("pipeline.report")
 
 
+def flat(case: str) -> str:
+    """The case's name in figure file names (a curve wheel's case 'r150/a1i' -> 'r150_a1i')."""
+    return case.replace("/", "_")
+
+
 def wheel_section(wheel: str, figdir) -> str:
     from .wheel_stage import load_wheel
 
@@ -84,13 +89,13 @@ def contact_section(case: str, cfg: dict, figdir, c: dict | None = None) -> str:
         kin = c["kinematics"]
         s_op, mu_op = operating_point(a, kin["speed"], kin["gamma_y"], kin.get("gamma_x", 0.0), c["friction"]["mu"])
         save_figure(friction_curves_figure(a, f"{case}: dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm",
-                                           operating=(s_op, c["friction"]["mu"])), figdir / f"{case}_contact_rf.png",
+                                           operating=(s_op, c["friction"]["mu"])), figdir / f"{flat(case)}_contact_rf.png",
                     dpi=100)
         op = (f" The case rolls at the slip s = |gamma| v = {s_op:.3f} m/s (gamma_y = {kin['gamma_y']:g}, "
               f"v = {3.6 * kin['speed']:.0f} km/h)" + (f", where mu_RF = {mu_op:.3f} of mu = {c['friction']['mu']:g}"
                                                       if np.isfinite(mu_op) else "") + " (marked).")
     else:
-        shutil.copy2(paths.case_dir(case) / "contact_rf.png", figdir / f"{case}_contact_rf.png")
+        shutil.copy2(paths.case_dir(case) / "contact_rf.png", figdir / f"{flat(case)}_contact_rf.png")
     p = a["p3_static"]
     ncontact = int((p > 0).sum())
     return f"""## Contact
@@ -100,7 +105,7 @@ the rail head; grid {len(a['x'])} x {len(a['y'])} elements of {1e3 * float(a['dx
 (dx = v dt). Static preload: approach {1e6 * float(a['xi3_static']):.1f} um, {ncontact} elements in contact,
 peak pressure {float(p.max()) / 1e9:.2f} GPa. Regularized friction curves (Kalker's TANG, steady state).{op}
 
-![friction curves](figures/{case}_contact_rf.png)
+![friction curves](figures/{flat(case)}_contact_rf.png)
 """
 
 
@@ -109,7 +114,7 @@ def greens_section(case: str, figdir) -> str:
 
     cfg = greens_inputs(case)[-1]
     a, _ = artifacts.load_npz(paths.case_dir(case) / "greens.npz", "greens", cfg, make_target=f"greens CASE={case}")
-    shutil.copy2(paths.case_dir(case) / "greens.png", figdir / f"{case}_greens.png")
+    shutil.copy2(paths.case_dir(case) / "greens.png", figdir / f"{flat(case)}_greens.png")
     return f"""## Green's functions
 
 Wheel: {len(a['wheel_f'])} modes at the contact point; Kropp's grid of N_t = {int(a['wheel_nt'])} samples of dt =
@@ -117,7 +122,7 @@ Wheel: {len(a['wheel_f'])} modes at the contact point; Kropp's grid of N_t = {in
 loop uses the equivalent recursive modal filters. Rail: moving Green's function of {len(a['rail_kernel'])} lags of dt, its
 tail at {float(a['rail_tail_ratio']):.1e} of the peak.
 
-![Green's functions](figures/{case}_greens.png)
+![Green's functions](figures/{flat(case)}_greens.png)
 """
 
 
@@ -126,14 +131,14 @@ def simulate_section(case: str, figdir) -> str:
 
     a, _ = artifacts.load_npz(paths.case_dir(case) / "simulate.npz", "simulate", simulate_config(case)[-1],
                               make_target=f"simulate CASE={case}")
-    shutil.copy2(paths.case_dir(case) / "simulate.png", figdir / f"{case}_simulate.png")
+    shutil.copy2(paths.case_dir(case) / "simulate.png", figdir / f"{flat(case)}_simulate.png")
     squeal = float(a["L_F2"]) >= SQUEAL_LEVEL_DB
     return f"""## Interaction
 
 {int(a['n_steps'])} time steps, stopped: {a['stop_reason']}. L_F2 = {float(a['L_F2']):.1f} dB re 1 N, dominant frequency of F2
 {float(a['f_dominant']):.1f} Hz: {'squeal' if squeal else 'no squeal (L_F2 < 10 dB)'}.
 
-![force histories](figures/{case}_simulate.png)
+![force histories](figures/{flat(case)}_simulate.png)
 """
 
 
@@ -142,7 +147,7 @@ def radiate_section(case: str, figdir) -> str:
 
     a, _ = artifacts.load_npz(paths.case_dir(case) / "radiate.npz", "radiate",
                               radiate_config(case, load_radiation_model(case))[1], make_target=f"radiate CASE={case}")
-    shutil.copy2(paths.case_dir(case) / "radiate.png", figdir / f"{case}_radiate.png")
+    shutil.copy2(paths.case_dir(case) / "radiate.png", figdir / f"{flat(case)}_radiate.png")
     rows = ["| n | L_W (dB re 1e-12 W) | share | peak (Hz) | nearest mode of that n | its f (Hz) |", "|---:|---:|---:|---:|---|---:|"]
     for i, n in enumerate(a["harmonics"]):
         rows.append(f"| {n} | {a['harmonic_L_W'][i]:.1f} | {100 * a['harmonic_W'][i] / a['W_total']:.2f} % | "
@@ -157,7 +162,7 @@ fitted at their own frequencies plus the Hann-windowed residual.{flag}
 Overall L_W = {float(a['L_W']):.1f} dB re 1e-12 W; loudest at {float(a['f_sound']):.1f} Hz, the
 {a['sound_mode_label']} mode ({float(a['sound_mode_f']):.1f} Hz); dominant force frequency {float(a['f_dominant']):.1f} Hz.
 
-![sound power](figures/{case}_radiate.png)
+![sound power](figures/{flat(case)}_radiate.png)
 
 {chr(10).join(rows)}
 """
@@ -171,7 +176,7 @@ def stability_section(case: str, figdir) -> str:
     st = stability_of(case)
     if st is None:
         return head + f"Not computed (or stale): `make stability CASE={case}` (then `make report CASE={case}`).\n"
-    shutil.copy2(paths.case_dir(case) / "stability.png", figdir / f"{case}_stability.png")
+    shutil.copy2(paths.case_dir(case) / "stability.png", figdir / f"{flat(case)}_stability.png")
     order = np.argsort(-st["sigma"])
     rows = ["| pole | f (Hz) | growth rate sigma (1/s) | open-loop f (Hz) |", "|---|---:|---:|---:|"]
     for k in order:
@@ -185,7 +190,7 @@ def stability_section(case: str, figdir) -> str:
 the operating slip): {len(order)} closed-loop poles, {len(unstable)} growing ({', '.join(unstable) or 'none'}). A growing pole is a
 mode that can squeal; the time loop decides which one wins and how loud.
 
-![closed-loop poles](figures/{case}_stability.png)
+![closed-loop poles](figures/{flat(case)}_stability.png)
 
 {chr(10).join(rows)}
 """
@@ -220,7 +225,7 @@ def listen_section(case: str, figdir) -> str:
                     f"{float(b['height']):g} | {float(b['L_p']):.1f} | {float(b['L_pA']):.1f} | "
                     f"{float(b['L_pA_incoherent']):.1f} | {float(b['f_peak']):.1f} |")
     files = listen_files(case, tag)
-    names = {k: f"{case}_{files[k].name}" for k in ("png", "wav", "json", "bands")}
+    names = {k: f"{flat(case)}_{files[k].name}" for k in ("png", "wav", "json", "bands")}
     for k, name in names.items():
         shutil.copy2(files[k], figdir / name)
     sel = np.isfinite(a["band_L_p"]) & (a["band_L_p"] >= float(a["L_p"]) - 40)
@@ -266,7 +271,7 @@ def passby_section(case: str, tag: str, figdir, listen_hash: str) -> str:
     if prov["config"].get("listen") != listen_hash:
         return f"\n### Pass-by\n\nNot shown: {files['npz'].name} is stale; run `make listen CASE={case}`.\n"
     for k in ("png", "wav"):
-        shutil.copy2(files[k], figdir / f"{case}_{files[k].name}")
+        shutil.copy2(files[k], figdir / f"{flat(case)}_{files[k].name}")
     return f"""
 ### Pass-by
 
@@ -278,9 +283,9 @@ one {float(b['window']):g} m past it), **L_AFmax = {float(b['L_AFmax']):.1f} dB(
 L_AE = {float(b['L_AE']):.1f} dB(A). ({100 * float(b['kept_share']):.2f} % of the sound power synthesized: the tones and
 the strongest residual bins.)
 
-![pass-by](figures/{case}_{files['png'].name})
+![pass-by](figures/{flat(case)}_{files['png'].name})
 
-The passage: [{files['wav'].name}](figures/{case}_{files['wav'].name}).
+The passage: [{files['wav'].name}](figures/{flat(case)}_{files['wav'].name}).
 """
 
 
