@@ -1,7 +1,7 @@
 """Tables of the squeal's sound power in the layouts other tools read (pure functions on arrays;
 the radiate stage writes them).
 
-* 1/3-octave band sound power (IEC 61260-1 base-10 bands, ``postprocess.listener``).
+* 1/3-octave band sound power (IEC 61260-1 base-10 bands, ``third_octaves``).
 * NoiseModelling's railway source table LW_RAILWAY (Universite-Gustave-Eiffel/NoiseModelling,
   ``noisemodelling-jdbc/.../EmissionTableGenerator.makeTrainLWTable``, commit 35d2da1b of
   2026-07-30): columns ``PK_SECTION, THE_GEOM, DIR_ID, GS`` then one column per 1/3-octave band
@@ -48,12 +48,30 @@ def lw_railway_columns() -> list[str]:
     return list(HEAD_COLUMNS) + [f"{PREFIX}{p}{f}" for p in PERIODS for f in NM_BANDS_HZ]
 
 
+NOMINAL_THIRDS = (10, 12.5, 16, 20, 25, 31.5, 40, 50, 63, 80, 100, 125, 160, 200, 250, 315, 400, 500, 630, 800, 1000,
+                  1250, 1600, 2000, 2500, 3150, 4000, 5000, 6300, 8000, 10000, 12500, 16000, 20000)  # IEC 61260-1 labels
+
+
+def third_octaves(f_lo: float = 10.0, f_hi: float = 20000.0):
+    """The base-10 1/3-octave bands (IEC 61260-1: f_m = 1000 10^(x/10) Hz, edges f_m 10^(+-1/20)) with
+    nominal labels from 10 Hz to 20 kHz overlapping [f_lo, f_hi], as ``postprocess.listener.Bands``.
+    Computed here rather than through pyfar: the radiate stage runs before the listening packages
+    are installed (the same bands as ``listener.third_octave_bands``; tests/report/test_exports.py)."""
+    from .listener import Bands
+
+    x = np.arange(-20, 14)                                   # 10 Hz .. 20 kHz
+    centre = 1000.0 * 10 ** (x / 10)
+    lower, upper = centre * 10 ** (-1 / 20), centre * 10 ** (1 / 20)
+    sel = (upper > f_lo) & (lower < f_hi)
+    return Bands(np.asarray(NOMINAL_THIRDS, float)[sel], centre[sel], lower[sel], upper[sel])
+
+
 def band_power(f, W, f_lo: float = 10.0, f_hi: float = 20000.0):
     """(Bands, W per band, W outside all bands): the entries W (W at frequencies f, Hz) summed into
-    the 1/3-octave bands overlapping [f_lo, f_hi] (``postprocess.listener.third_octave_bands``)."""
-    from .listener import band_sums, third_octave_bands
+    the 1/3-octave bands overlapping [f_lo, f_hi] (ideal edges, as the listen stage's bands)."""
+    from .listener import band_sums
 
-    bands = third_octave_bands(f_lo, f_hi)
+    bands = third_octaves(f_lo, f_hi)
     per, out = band_sums(f, W, bands)
     return bands, per, out
 

@@ -86,6 +86,30 @@ def test_lw_railway_layout_and_read_back(tmp_path):
     assert i400 == 9
 
 
+def test_bands_are_the_listen_stages():
+    """The radiate stage's own 1/3-octave bands (no pyfar: it runs before the listening packages are
+    installed) equal the listen stage's (pyfar's IEC 61260-1 bands)."""
+    pytest.importorskip("pyfar")
+    from postprocess.exports import third_octaves
+    from postprocess.listener import third_octave_bands
+
+    for lo, hi in ((10.0, 20000.0), (50.0, 10000.0), (44.0, 11000.0)):
+        a, b = third_octaves(lo, hi), third_octave_bands(lo, hi)
+        np.testing.assert_array_equal(a.nominal, b.nominal)
+        for k in ("centre", "lower", "upper"):
+            np.testing.assert_allclose(getattr(a, k), getattr(b, k), rtol=1e-12)
+
+
+def test_radiate_exports_do_not_import_the_listening_packages():
+    import subprocess
+    import sys
+
+    code = ("import sys; import pipeline.exports as E, postprocess.exports as P, numpy as np; "
+            "P.band_power(np.array([434.7]), np.array([0.05])); assert 'pyfar' not in sys.modules")
+    r = subprocess.run([sys.executable, "-c", code], cwd=paths.ROOT, capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+
+
 def test_spectra_csv_read_back(tmp_path):
     a = synthetic_radiation()
     radiation_tables(a, tmp_path, V)
