@@ -28,7 +28,16 @@ def test_single_tone_exposure_matches_the_closed_form(directivity, speed_kmh):
     assert abs(10 * np.log10(E / ref)) < 0.05          # in fact (the O(M) Jacobian and the window's ends)
     L = levels(p, FS)
     assert L["T"] == pytest.approx(80.0 / v, abs=2 / FS)
-    assert L["L_Aeq"] == pytest.approx(10 * np.log10(ref / L["T"] / P_REF**2), abs=0.05)
+    assert L["L_Aeq"] == pytest.approx(10 * np.log10(ref / L["T"] / P_REF**2), abs=0.05)   # unweighted here
+    # A-weighted: the tone's A(f0) (IEC 61672-1 Table 3 at 400/500 Hz: -4.8/-3.2 dB; at 434.7 Hz -4.2 dB)
+    # plus the analytic level, the Doppler shift of +-M f0 moving A by < 0.1 dB
+    from postprocess.listener import a_weighting
+
+    _, pA = passby_signal([f0], [W], train, geo, FS, weighted=True)
+    A0 = float(a_weighting(f0)[0])
+    assert -4.4 < A0 < -4.0
+    assert levels(pA, FS)["L_Aeq"] == pytest.approx(10 * np.log10(ref / L["T"] / P_REF**2) + A0, abs=0.5)
+    assert levels(pA, FS)["L_Aeq"] == pytest.approx(10 * np.log10(ref / L["T"] / P_REF**2) + A0, abs=0.1)
 
 
 def test_doppler_shift_and_emission_time():
