@@ -86,13 +86,13 @@ def contact_section(case: str, cfg: dict, figdir, c: dict | None = None) -> str:
 
         from .atomic import save_figure
 
-        kin = c["kinematics"]
-        s_op, mu_op = operating_point(a, kin["speed"], kin["gamma_y"], kin.get("gamma_x", 0.0), c["friction"]["mu"])
+        kin, mu = c["kinematics"], c["friction"].get("mu")
+        mu = float("nan") if mu is None else float(mu)       # a friction law without a Coulomb mu: the slip only
+        s_op, mu_op = operating_point(a, kin["speed"], kin["gamma_y"], kin.get("gamma_x", 0.0), mu)
         save_figure(friction_curves_figure(a, f"{case}: dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm",
-                                           operating=(s_op, c["friction"]["mu"])), figdir / f"{flat(case)}_contact_rf.png",
-                    dpi=100)
+                                           operating=(s_op, mu)), figdir / f"{flat(case)}_contact_rf.png", dpi=100)
         op = (f" The case rolls at the slip s = |gamma| v = {s_op:.3f} m/s (gamma_y = {kin['gamma_y']:g}, "
-              f"v = {3.6 * kin['speed']:.0f} km/h)" + (f", where mu_RF = {mu_op:.3f} of mu = {c['friction']['mu']:g}"
+              f"v = {3.6 * kin['speed']:.0f} km/h)" + (f", where mu_RF = {mu_op:.3f} of mu = {mu:g}"
                                                       if np.isfinite(mu_op) else "") + " (marked).")
     else:
         shutil.copy2(paths.case_dir(case) / "contact_rf.png", figdir / f"{flat(case)}_contact_rf.png")
