@@ -182,4 +182,8 @@ def test_make_listen_then_report(built):
     assert "## What a listener hears" in text and "Receiver 7.5m: 7.5 m from the track centre" in text
     assert (built / "report" / "default" / "figures" / "default_listen_7.5m.wav").exists()
     assert (c / "listen_20m_3m.npz").exists()      # the command line's receiver kept beside the case's
+    assert (c / "passby_7.5m.npz").exists() and (c / "passby_20m_3m.npz").exists()
+    html = (built / "report" / "default" / "report.html").read_text()
+    assert html.index("SQUEALS") < html.index("<h2") and html.count("<audio") == 2 and "data:image/png;base64" in html
+    assert (built / "report" / "default" / "vtk" / "ods.pvd").exists()
     assert make("-q", "all", build=built).returncode == 0
