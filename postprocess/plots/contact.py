@@ -18,7 +18,7 @@ def operating_point(a: dict, v: float, gamma_y: float, gamma_x: float, mu: float
 
 
 def friction_curves_figure(a: dict, title: str, operating: tuple[float, float] | None = None):
-    """mu_RF = F2/F3 vs slip velocity for every mu (the regularized friction curves); ``operating``
+    """mu_RF = F2/F3 vs slip velocity for every curve of the contact (the regularized friction curves); ``operating``
     = (s, mu): the case's steady slip, marked on its curve."""
     import matplotlib
 
@@ -27,9 +27,10 @@ def friction_curves_figure(a: dict, title: str, operating: tuple[float, float] |
 
     fig, ax = plt.subplots(figsize=(6.5, 4))
     colours = plt.cm.viridis(np.linspace(0, 0.9, len(a["mu_values"])))
-    for i, mu in enumerate(a["mu_values"]):
+    labels = a["rf_label"] if "rf_label" in a else [f"mu = {mu:.2f}" for mu in a["mu_values"]]
+    for i, label in enumerate(labels):
         n = a["rf_n"][i]
-        ax.plot(a["rf_s"][i, :n], a["rf_mu"][i, :n], color=colours[i], label=f"mu = {mu:.2f}")
+        ax.plot(a["rf_s"][i, :n], a["rf_mu"][i, :n], color=colours[i], label=str(label))
     xmax = float(a["rf_s"][:, -1].max()) * 0.35
     if operating is not None:
         s, mu = operating

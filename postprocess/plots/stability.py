@@ -31,7 +31,9 @@ def screen_figure(a: dict, case: str, c: dict):
     track = lab == "track"
     if track.any():
         ax.semilogx(f[track], s[track], "x", color="C0", ms=6, label="wheelset on the track")
-    ax.set_title(f"{case}: all {len(s)} poles; dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm, mu = {c['friction']['mu']}, "
+    fr = c["friction"]
+    fr_text = f"mu = {fr['mu']}" if fr.get("mu") is not None else f"friction {fr.get('preset') or fr.get('law')}"
+    ax.set_title(f"{case}: all {len(s)} poles; dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm, {fr_text}, "
                  f"gamma_y = {c['kinematics']['gamma_y']}")
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3, which="both")
