@@ -18,6 +18,8 @@ from . import artifacts, paths
 from .config import load
 from .schemas import CASE
 
+from .report_headline import headline, headline_markdown
+
 log = logging.getLogger("pipeline.report")
 
 
@@ -306,35 +308,33 @@ def exports_section(case: str, vtk: dict) -> str:
 
 
 def run_report(case: str) -> str:
-    from .contact_stage import contact_inputs
-    from .radiate_stage import load_radiation_model, radiate_config
-    from .report_headline import headline, headline_markdown
-    from .simulate_stage import simulate_config
-    from .study.report import studies_section
-
     cpath = paths.case_file(case)
     c = load(cpath, CASE)
     out = paths.build() / "report" / case
     figdir = out / "figures"
     figdir.mkdir(parents=True, exist_ok=True)
-    cdir = paths.case_dir(case)
-    sim, _ = artifacts.load_npz(cdir / "simulate.npz", "simulate", simulate_config(case)[-1],
-                                make_target=f"simulate CASE={case}")
-    model = load_radiation_model(case)
-    rad, _ = artifacts.load_npz(cdir / "radiate.npz", "radiate", radiate_config(case, model)[1],
-                                make_target=f"radiate CASE={case}")
+    sections = [f"# Curve squeal report: case `{case}`\n\n{c['description']}\n\n"
+                f"Case file `{paths.shown(cpath)}`: wheel `{c['wheel']}`, rail `{c['rail']}`, dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm, "
+                f"mu = {c['friction']['mu']}, gamma_y = {c['kinematics']['gamma_y']}, v = {3.6 * c['kinematics']['speed']:.0f} km/h.\n",
+                wheel_section(c["wheel"], figdir), rail_section(c["rail"], figdir)]
+    # the headline block (pipeline/report_headline.py) right under the title, before anything else
+    sim, rad, model = case_results(case)
+    sections[0] = sections[0].replace("\n\n", f"\n\n{headline_markdown(headline(case, sim, rad))}\n", 1)
+    sections[0] += "The model: `docs/physics.md`; every input key: `docs/inputs.md`.\n"
+    from .contact_stage import contact_inputs
+
+    sections.append(contact_section(case, contact_inputs(case)[3], figdir, c))
+    sections.append(greens_section(case, figdir))
+    sections.append(simulate_section(case, figdir))
+    sections.append(stability_section(case, figdir))
+    sections.append(radiate_section(case, figdir))
+    sections.append(listen_section(case, figdir))
     from .exports import case_vtk
 
-    vtk = case_vtk(case, model, rad)
-    h = headline(case, sim, rad)
-    sections = [f"# Curve squeal report: case `{case}`\n\n{headline_markdown(h)}\n{c['description']}\n\n"
-                f"Case file `{paths.shown(cpath)}`: wheel `{c['wheel']}`, rail `{c['rail']}`, dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm, "
-                f"mu = {c['friction']['mu']}, gamma_y = {c['kinematics']['gamma_y']}, v = {3.6 * c['kinematics']['speed']:.0f} km/h. "
-                "The model: `docs/physics.md`; the inputs: `docs/inputs.md`.\n",
-                wheel_section(c["wheel"], figdir), rail_section(c["rail"], figdir),
-                contact_section(case, contact_inputs(case)[3], figdir, c), greens_section(case, figdir),
-                simulate_section(case, figdir), stability_section(case, figdir), radiate_section(case, figdir),
-                listen_section(case, figdir), exports_section(case, vtk), studies_section(figdir)]
+    sections.append(exports_section(case, case_vtk(case, model, rad)))
+    from .study.report import studies_section
+
+    sections.append(studies_section(figdir))
     text = "\n".join(sections)
     with artifacts.atomic_write(out / "report.md") as tmp:
         tmp.write_text(text)
@@ -343,3 +343,17 @@ def run_report(case: str) -> str:
     write_html(out / "report.md", f"Curve squeal report: {case}")
     log.info("report %s -> %s, report.html", case, out / "report.md")
     return str(out / "report.md")
+
+
+def case_results(case: str):
+    """(simulate.npz, radiate.npz, the radiation model) of the case, checked against its inputs."""
+    from .radiate_stage import load_radiation_model, radiate_config
+    from .simulate_stage import simulate_config
+
+    cdir = paths.case_dir(case)
+    sim, _ = artifacts.load_npz(cdir / "simulate.npz", "simulate", simulate_config(case)[-1],
+                                make_target=f"simulate CASE={case}")
+    model = load_radiation_model(case)
+    rad, _ = artifacts.load_npz(cdir / "radiate.npz", "radiate", radiate_config(case, model)[1],
+                                make_target=f"radiate CASE={case}")
+    return sim, rad, model
