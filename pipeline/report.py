@@ -84,15 +84,15 @@ def contact_section(case: str, cfg: dict, figdir, c: dict | None = None) -> str:
     a, _ = artifacts.load_npz(paths.case_dir(case) / "contact.npz", "contact", cfg, make_target=f"contact CASE={case}")
     op = ""
     if c is not None:
-        from postprocess.plots.contact import friction_curves_figure, operating_point
+        from postprocess.plots.contact import friction_curves_figure, mark_operating_slip, operating_point
 
         from .atomic import save_figure
 
         kin, mu = c["kinematics"], c["friction"].get("mu")
         mu = float("nan") if mu is None else float(mu)       # a friction law without a Coulomb mu: the slip only
         s_op, mu_op = operating_point(a, kin["speed"], kin["gamma_y"], kin.get("gamma_x", 0.0), mu)
-        save_figure(friction_curves_figure(a, f"{case}: dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm",
-                                           operating=(s_op, mu)), figdir / f"{flat(case)}_contact_rf.png", dpi=100)
+        fig = friction_curves_figure(a, f"{case}: dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm")
+        save_figure(mark_operating_slip(fig, a, s_op, mu), figdir / f"{flat(case)}_contact_rf.png", dpi=100)
         op = (f" The case rolls at the slip s = |gamma| v = {s_op:.3f} m/s (gamma_y = {kin['gamma_y']:g}, "
               f"v = {3.6 * kin['speed']:.0f} km/h)" + (f", where mu_RF = {mu_op:.3f} of mu = {mu:g}"
                                                       if np.isfinite(mu_op) else "") + " (marked).")
@@ -317,10 +317,6 @@ def run_report(case: str) -> str:
                 f"Case file `{paths.shown(cpath)}`: wheel `{c['wheel']}`, rail `{c['rail']}`, dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm, "
                 f"mu = {c['friction']['mu']}, gamma_y = {c['kinematics']['gamma_y']}, v = {3.6 * c['kinematics']['speed']:.0f} km/h.\n",
                 wheel_section(c["wheel"], figdir), rail_section(c["rail"], figdir)]
-    # the headline block (pipeline/report_headline.py) right under the title, before anything else
-    sim, rad, model = case_results(case)
-    sections[0] = sections[0].replace("\n\n", f"\n\n{headline_markdown(headline(case, sim, rad))}\n", 1)
-    sections[0] += "The model: `docs/physics.md`; every input key: `docs/inputs.md`.\n"
     from .contact_stage import contact_inputs
 
     sections.append(contact_section(case, contact_inputs(case)[3], figdir, c))
@@ -331,10 +327,14 @@ def run_report(case: str) -> str:
     sections.append(listen_section(case, figdir))
     from .exports import case_vtk
 
+    sim, rad, model = case_results(case)
     sections.append(exports_section(case, case_vtk(case, model, rad)))
     from .study.report import studies_section
 
     sections.append(studies_section(figdir))
+    # the headline block (pipeline/report_headline.py) right under the title, before anything else
+    sections[0] = sections[0].replace("\n\n", f"\n\n{headline_markdown(headline(case, sim, rad))}\n", 1)
+    sections[0] += "The model: `docs/physics.md`; every input key: `docs/inputs.md`.\n"
     text = "\n".join(sections)
     with artifacts.atomic_write(out / "report.md") as tmp:
         tmp.write_text(text)

@@ -21,24 +21,32 @@ def screen_figure(a: dict, case: str, c: dict):
         ax.annotate(li, (fi, si), textcoords="offset points", xytext=(4, 4), fontsize=8)
     ax.axhline(0, color="k", lw=0.6)
     ax.set_xlabel("frequency (Hz)")
-    ax.set_ylabel("growth rate sigma (1/s, symlog)")
-    # every pole: growth rates span 1e-2 (lightly damped wheel modes) to 1e3 1/s (the damped track and
-    # axle roots), so the axis is linear within +-1 1/s and logarithmic beyond
-    ax.set_yscale("symlog", linthresh=1.0)
-    if len(s):
-        lo, hi = float(s.min()), float(s.max())
-        ax.set_ylim(min(-1.0, 1.5 * lo), max(1.0, 1.5 * hi))
-    track = lab == "track"
-    if track.any():
-        ax.semilogx(f[track], s[track], "x", color="C0", ms=6, label="wheelset on the track")
+    ax.set_ylabel("growth rate sigma (1/s)")
+    ax.set_ylim(max(-30.0, float(s.min()) - 1) if len(s) else -30, max(5.0, 1.15 * float(s.max())) if len(s) else 5)
     fr = c["friction"]
     fr_text = f"mu = {fr['mu']}" if fr.get("mu") is not None else f"friction {fr.get('preset') or fr.get('law')}"
-    ax.set_title(f"{case}: all {len(s)} poles; dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm, {fr_text}, "
+    ax.set_title(f"{case}: dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm, {fr_text}, "
                  f"gamma_y = {c['kinematics']['gamma_y']}")
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3, which="both")
+    show_every_pole(ax, f, s, lab)
     fig.tight_layout()
     return fig
+
+
+def show_every_pole(ax, f, s, lab) -> None:
+    """Every pole on the axes (issue 27: the limits above cut them at -30 1/s): growth rates span 1e-2
+    (lightly damped wheel modes) to 1e3 1/s (the damped track and axle roots), so the axis is linear
+    within +-1 1/s and logarithmic beyond; the wheelset's roots on the track marked apart."""
+    ax.set_yscale("symlog", linthresh=1.0)
+    if len(s):
+        ax.set_ylim(min(-1.0, 1.5 * float(s.min())), max(1.0, 1.5 * float(s.max())))
+    track = lab == "track"
+    if track.any():
+        ax.semilogx(f[track], s[track], "x", color="C0", ms=6, label="wheelset on the track")
+        ax.legend(fontsize=8)
+    ax.set_ylabel("growth rate sigma (1/s, symlog)")
+    ax.text(0.01, 0.02, f"all {len(s)} poles", transform=ax.transAxes, fontsize=8, color="0.3")
 
 
 def map_figure(rows: list[dict], gammas, mus, case: str):

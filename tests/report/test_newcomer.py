@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from pipeline.report_headline import headline_markdown, verdict
-from postprocess.plots.contact import friction_curves_figure, operating_point
+from postprocess.plots.contact import friction_curves_figure, mark_operating_slip, operating_point
 from postprocess.plots.stability import screen_figure
 
 CASE = {"contact": {"dy_wr": -0.015}, "friction": {"mu": 0.35}, "kinematics": {"gamma_y": -0.014}}
@@ -57,7 +57,7 @@ def test_friction_curves_mark_the_operating_slip():
     assert s_op == pytest.approx(0.014 * v)
     assert mu_op == pytest.approx(0.35 * np.tanh(s_op / 0.05), rel=2e-3)       # on the curve, linear interpolation
     assert np.isnan(operating_point(a, v, gy, 0.0, 0.5)[1])                    # no curve for that mu
-    fig = friction_curves_figure(a, "x", operating=(s_op, 0.35))
+    fig = mark_operating_slip(friction_curves_figure(a, "x"), a, s_op, 0.35)
     marks = [ln for ln in fig.axes[0].lines if ln.get_marker() == "o"]
     assert len(marks) == 1 and marks[0].get_xdata()[0] == pytest.approx(s_op)
 
