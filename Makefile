@@ -186,7 +186,7 @@ FORCE:
 # modes, the greens stage, the numba warm-up, the contact, the renders, simulate -> radiate
 $(BUILD)/report/$(CASE)/report.md: | $(W)/mesh.json $(RENDER)
 $(BUILD)/report/$(CASE)/report.md: $(CFILE) $(R)/rail.npz $(W)/modes.npz $(C)/greens.npz | $(JIT)
-$(BUILD)/report/$(CASE)/report.md: $(C)/contact.npz $(W)/shapes/gallery.png $(C)/simulate.npz $(C)/radiate.npz $(WFILE) $(RFILE) $(DEPS_report) $(wildcard $(BUILD)/studies/*/summary.md) $(wildcard $(C)/listen.npz)
+$(BUILD)/report/$(CASE)/report.md: $(C)/contact.npz $(W)/shapes/gallery.png $(C)/simulate.npz $(C)/radiate.npz $(WFILE) $(RFILE) $(C)/stability.npz $(DEPS_report) $(wildcard $(BUILD)/studies/*/summary.md) $(wildcard $(C)/listen*.npz)
 $(BUILD)/report/$(CASE)/report.md:
 	$(PY) -m pipeline report --case $(CASE)
 

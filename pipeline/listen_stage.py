@@ -9,9 +9,12 @@ postprocess/listener.py; the sound: postprocess/audio.py (assumptions stated
 there).  The squealing wheel is taken on the rail nearer the receiver, its
 centre at the rolling radius above the top of the rail.
 
-Artifacts in build/cases/<case>/:
+Artifacts in build/cases/<case>/, one set per receiver, side by side: ``<tag>`` names the receiver
+(``receiver_tag``: ``7.5m`` at 7.5 m and the ISO 3095 height 1.2 m, ``25m_3.5m`` otherwise), so that a
+run with ``--distance 25`` keeps the 7.5 m result; the case's own receiver is also written as
+listen.npz (Make's target; the same arrays as its listen_<tag>.npz):
 
-* listen.npz: receiver 'distance', 'height', 'ground_depth', 'ground',
+* listen_<tag>.npz: receiver 'distance', 'height', 'ground_depth', 'ground',
   'directivity', 'h_source', 'h_receiver' (above the ground plane),
   'horizontal' (wheel centre to receiver), 'r_direct', 'r_image' (m);
   per component (the radiate stage's tones and residual bins) 'f' (Hz),
@@ -25,12 +28,14 @@ Artifacts in build/cases/<case>/:
   'full_scale_sine_dB', 'wav_duration', 't_limit_cycle' (s into the sound),
   't_history_start' (s of simulation), 'onset_t', 'onset_gain', and its
   read-back 'wav_L_p' (limit-cycle part), 'wav_f_peak';
-* listen.wav: mono, 44.1 kHz, 16-bit PCM; its calibration in a LIST/INFO
+* listen_<tag>.wav: mono, 44.1 kHz, 16-bit PCM; its calibration in a LIST/INFO
   comment and in
-* listen.json: the calibration sidecar (Pa per count, the level of a
+* listen_<tag>.json: the calibration sidecar (Pa per count, the level of a
   full-scale sine, L_p, L_pA, receiver, assumptions);
-* listen.png: the 1/3-octave spectrum (unweighted, A-weighted) and the
-  sound's envelope.
+* listen_<tag>.png: the 1/3-octave spectrum (unweighted, A-weighted) and the
+  sound's envelope;
+* listen_<tag>_bands.csv: the 1/3-octave bands (nominal, centre, lower, upper
+  frequency in Hz, L_p, L_pA in dB re 20 uPa).
 """
 from __future__ import annotations
 
@@ -131,7 +136,7 @@ def compute_listening(case: str, distance=None, height=None, allow_silent: bool 
     squeal = bool(a["meaningful"])
     if not squeal and not allow_silent:
         raise ConfigError(str(paths.case_file(case)), detail=(
-            f"case {case!r} does not squeal: L_F2 = {float(a['L_F2']):.1f} dB < 10 dB (SPEC 6; the simulation "
+            f"case {case!r} does not squeal: L_F2 = {float(a['L_F2']):.1f} dB < 10 dB (docs/physics.md section 6; the simulation "
             f"stopped: {a['stop_reason']}), so there is no squeal to listen to. `--allow-silent` "
             f"(make listen ALLOW_SILENT=1) writes the levels and a silent WAV."))
     f, W, tone = a["f"], a["W"], a["is_tone"].astype(bool)
@@ -202,7 +207,7 @@ def calibration(a: dict, case: str) -> dict:
                f"{float(a['full_scale_sine_dB']):.2f} dB SPL re 20 uPa; limit cycle from {lc}: L_p = "
                f"{float(a['L_p']):.2f} dB, L_pA = {float(a['L_pA']):.2f} dB(A)")
     return {
-        "wav": "listen.wav", "sample_rate_hz": int(a["fs"]), "bits": 16, "channels": 1,
+        "wav": f"listen_{receiver_tag(a['distance'], a['height'])}.wav", "sample_rate_hz": int(a["fs"]), "bits": 16, "channels": 1,
         "pa_per_count": float(a["pa_per_count"]),
         "full_scale_sine_dB_SPL": float(a["full_scale_sine_dB"]),
         "calibration": "sample value v (int16) is v * pa_per_count Pa; a full-scale sine (peak 32767) has "
@@ -230,27 +235,68 @@ def _num(x):
     return x if np.isfinite(x) else None
 
 
+ISO_HEIGHT = 1.2  # m, ISO 3095's receiver height: a receiver at it is named by its distance alone
+
+
+def receiver_tag(distance: float, height: float) -> str:
+    """The receiver's name in file names: '7.5m' (at the ISO 3095 height 1.2 m), else '25m_3.5m'."""
+    return f"{float(distance):g}m" + ("" if float(height) == ISO_HEIGHT else f"_{float(height):g}m")
+
+
+def listen_files(case: str, tag: str) -> dict:
+    """{kind: path} of one receiver's artifacts ('npz', 'wav', 'json', 'png', 'bands')."""
+    out = paths.case_dir(case)
+    return {k: out / f"listen_{tag}{s}" for k, s in (("npz", ".npz"), ("wav", ".wav"), ("json", ".json"),
+                                                       ("png", ".png"), ("bands", "_bands.csv"))}
+
+
+BAND_COLUMNS = ["band_nominal_hz", "band_centre_hz", "band_lower_hz", "band_upper_hz", "L_p_dB", "L_pA_dB"]
+
+
+def band_rows(a: dict) -> list[list[float]]:
+    """Rows of listen_<tag>_bands.csv (every band, -inf where a band holds nothing)."""
+    return [[float(x) for x in row] for row in zip(a["band_nominal"], a["band_centre"], a["band_lower"],
+                                                    a["band_upper"], a["band_L_p"], a["band_L_pA"])]
+
+
 def run_listen(case: str, distance=None, height=None, allow_silent: bool = False) -> dict:
     arrays, wav, cal, cfg = compute_listening(case, distance, height, allow_silent)
-    out = paths.case_dir(case)
-
-    plot_listening(arrays, out / "listen.png", case)
-    with artifacts.atomic_write(out / "listen.wav") as tmp:
+    tag = receiver_tag(arrays["distance"], arrays["height"])
+    files = listen_files(case, tag)
+    plot_listening(arrays, files["png"], case)
+    with artifacts.atomic_write(files["wav"]) as tmp:
         tmp.write_bytes(wav)
-    artifacts.save_json(out / "listen.json", "listen-wav", cfg, cal)
-    artifacts.save_npz(out / "listen.npz", "listen", cfg, **arrays)
+    artifacts.save_json(files["json"], "listen-wav", cfg, cal)
+    artifacts.save_csv(files["bands"], BAND_COLUMNS, band_rows(arrays))
+    artifacts.save_npz(files["npz"], "listen", cfg, **arrays)
+    if arrays["meaningful"]:
+        from .passby_stage import run_passby
+
+        c, _, _, geo = listener_inputs(case, distance, height)
+        rad, _ = artifacts.load_npz(paths.case_dir(case) / "radiate.npz", "radiate")
+        run_passby(case, c, geo, rad, cfg, tag)
+    own = listener_inputs(case)[2]
+    if (own["distance"], own["height"]) == (float(arrays["distance"]), float(arrays["height"])):
+        artifacts.save_npz(paths.case_dir(case) / "listen.npz", "listen", cfg, **arrays)  # Make's target
     log.info("listen %s: receiver %.2f m from the track, %.2f m above the rail: L_p = %.1f dB, L_pA = %.1f dB(A) "
              "(incoherent ground %.1f dB), loudest %.1f Hz%s; %.2f s WAV (0 dBFS sine = %.1f dB SPL) -> %s",
              case, arrays["distance"], arrays["height"], arrays["L_p"], arrays["L_pA"], arrays["L_p_incoherent"],
              arrays["f_peak"], " (no squeal: silent file)" if arrays["silent"] else "", arrays["wav_duration"],
-             arrays["full_scale_sine_dB"], out / "listen.wav")
+             arrays["full_scale_sine_dB"], files["wav"])
     return arrays
 
 
-def load_listening(case: str) -> tuple[dict, dict]:
-    """listen.npz, checked against the current radiate and simulate artifacts (its
-    receiver may come from the command line, so the listener is the artifact's own)."""
-    path = paths.case_dir(case) / "listen.npz"
+def receivers(case: str) -> list[str]:
+    """Tags of the receivers computed for a case (listen_<tag>.npz), nearest first."""
+    tags = [p.name[len("listen_"):-len(".npz")] for p in paths.case_dir(case).glob("listen_*.npz")]
+    return sorted(tags, key=lambda s: tuple(float(x[:-1]) for x in s.split("_")))
+
+
+def load_listening(case: str, tag: str | None = None) -> tuple[dict, dict]:
+    """listen_<tag>.npz (``tag`` None: listen.npz, the case's own receiver), checked against the
+    current radiate and simulate artifacts (its receiver may come from the command line, so the
+    listener is the artifact's own)."""
+    path = paths.case_dir(case) / ("listen.npz" if tag is None else f"listen_{tag}.npz")
     a, prov = artifacts.load_npz(path, "listen", make_target=f"listen CASE={case}")
     c, pw, _, _ = listener_inputs(case)
     _, _, cfg = listen_config(case, prov["config"]["listener"], pw)

@@ -21,7 +21,10 @@ Artifacts in build/cases/<case>/:
   and their 'unit_W_n_*' per harmonic; 'zeta', 'y_wheel', 'contact_rz';
 * radiate.png: F2/F3 amplitude spectra, the sound power spectrum, the
   unit-force curves;
-* radiate_harmonics.csv: n, W_W, L_W_dB, share, f_peak_hz, mode, mode_f_hz.
+* radiate_harmonics.csv: n, W_W, L_W_dB, share, f_peak_hz, mode, mode_f_hz;
+* the exports of pipeline/exports.py: radiate_spectrum.csv, radiate_forces.csv,
+  radiate_tones.csv, radiate_bands.csv (1/3 octaves) and lw_railway.csv
+  (NoiseModelling's LW_RAILWAY layout).
 
 Window and scaling.  The final stretch is the simulation's full-rate
 F_final: its last 0.5 s (SPEC 6's squeal measures use the same samples).
@@ -204,12 +207,22 @@ def run_radiate(case: str) -> dict:
     plot_radiation(arrays, out / "radiate.png", case)
     artifacts.save_csv(out / "radiate_harmonics.csv",
                        ["n", "W_W", "L_W_dB", "share", "f_peak_hz", "mode", "mode_f_hz"], harmonic_rows(arrays))
+    from .exports import radiation_tables
+
+    radiation_tables(arrays, out, _case_speed(case))  # CSV spectra, bands, LW_RAILWAY (pipeline/exports.py)
     artifacts.save_npz(out / "radiate.npz", "radiate", cfg, **arrays)
     log.info("radiate %s: L_W = %.1f dB re 1e-12 W, peak %.1f Hz (%s), %d tones; L_F2 = %.1f dB (%s) -> %s",
              case, arrays["L_W"], arrays["f_sound"], arrays["sound_mode_label"], len(arrays["tone_f"]),
              arrays["L_F2"], "squeal" if arrays["meaningful"] else f"below {SQUEAL_LEVEL_DB:g} dB: not meaningful",
              out / "radiate.npz")
     return arrays
+
+
+def _case_speed(case: str) -> float:
+    from .config import load
+    from .schemas import CASE
+
+    return float(load(paths.case_file(case), CASE)["kinematics"]["speed"])
 
 
 def plot_radiation(a: dict, path, case: str) -> None:

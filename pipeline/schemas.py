@@ -93,6 +93,17 @@ WHEEL = {
     },
 }
 
+# the train of the pass-by (postprocess/passby.py), heard at the [listener] position ([listener.passby]); speed: the case's
+PASSBY = {
+    "n_bogies": Field(int, min=1, max=40, default=2,
+                      doc="squealing wheels passing, one per bogie (its leading wheelset's wheel on the near rail)"),
+    "bogie_spacing": Field(float, unit="m", min=1.0, max=40.0, default=12.5,
+                           doc="distance between consecutive squealing wheels (bogie centres; a metro car: 10-13 m)"),
+    "window": Field(float, unit="m", min=5.0, max=500.0, default=30.0,
+                    doc="the passage: from the first squealing wheel this far before the receiver to the last one "
+                        "this far past it (L_pAeq over that time)"),
+}
+
 # the receiver of the `listen` stage (postprocess/listener.py states the propagation model)
 LISTENER = {
     "distance": Field(float, unit="m", min=0.0, max=1000.0, min_inclusive=False, default=7.5,
@@ -105,6 +116,7 @@ LISTENER = {
                     doc="'rigid': image source in the ground plane; 'none': free field"),
     "directivity": Field(str, choices=["dipole", "omni"], default="dipole",
                          doc="the wheel as a dipole along the axle (axial squeal modes) or omnidirectional"),
+    "passby": PASSBY,
 }
 
 CASE = {

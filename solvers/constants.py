@@ -40,3 +40,6 @@ def thesis_rolling_circle_offset() -> float:
     mean of y^R - dy_WR - y^W over THESIS_CONTACT_POINTS_FIELD (= -17/3 mm)."""
     pts = THESIS_CONTACT_POINTS_FIELD
     return sum(yr - dy - yw for dy, (yw, yr) in pts.items()) / len(pts)
+# Below this frequency a self-excited oscillation is the wheelset on its suspension or the track (e.g. the
+# ~70-90 Hz vertical suspension mode at high friction), not squeal (a wheel's (n,0,a) modes lie above).
+SQUEAL_F_MIN_HZ = 200.0

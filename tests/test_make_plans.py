@@ -20,7 +20,7 @@ import pytest
 from pipeline import deps
 
 ROOT = Path(__file__).resolve().parent.parent
-ALL = {"mesh", "modes", "shapes", "rail", "contact", "greens", "simulate", "radiate", "report"}
+ALL = {"mesh", "modes", "shapes", "rail", "contact", "greens", "simulate", "radiate", "stability", "report"}  # the report shows the stability screen (issue 27)
 PLAN = re.compile(r"-m pipeline (\w+) --(wheel|rail|case) (\S+)")
 
 
@@ -129,7 +129,7 @@ def test_interaction_solver_plans_simulate_and_after(built):
     mod, fn, _ = deps.ENTRIES["simulate"]
     assert "solvers/interaction.py" in deps.stage_files(mod, fn) or not (ROOT / "solvers/interaction.py").exists()
     touch(built / "solvers/interaction.py")
-    assert stages(plan(built, "all")) == {"simulate", "radiate", "report"}
+    assert stages(plan(built, "all")) == {"simulate", "stability", "radiate", "report"}  # the screen imports the loop's inputs
 
 
 def test_mode_renderer_plans_shapes_and_report_only(built):

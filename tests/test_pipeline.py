@@ -169,7 +169,7 @@ def test_make_listen_then_report(built):
     c = built / "cases" / "default"
     r = make("listen", build=built)
     assert r.returncode == 0, r.stdout + r.stderr
-    for f in ("listen.npz", "listen.wav", "listen.json", "listen.png"):
+    for f in ("listen.npz", "listen_7.5m.npz", "listen_7.5m.wav", "listen_7.5m.json", "listen_7.5m.png"):
         assert (c / f).exists(), f
     assert make("-q", "listen", build=built).returncode == 0
     r = make("listen", "DISTANCE=20", "HEIGHT=3", build=built)
@@ -179,6 +179,11 @@ def test_make_listen_then_report(built):
     r = make("report", build=built)
     assert r.returncode == 0, r.stdout + r.stderr
     text = (built / "report" / "default" / "report.md").read_text()
-    assert "## What a listener hears" in text and "Receiver 7.5 m from the track centre" in text
-    assert (built / "report" / "default" / "figures" / "default_listen.wav").exists()
+    assert "## What a listener hears" in text and "Receiver 7.5m: 7.5 m from the track centre" in text
+    assert (built / "report" / "default" / "figures" / "default_listen_7.5m.wav").exists()
+    assert (c / "listen_20m_3m.npz").exists()      # the command line's receiver kept beside the case's
+    assert (c / "passby_7.5m.npz").exists() and (c / "passby_20m_3m.npz").exists()
+    html = (built / "report" / "default" / "report.html").read_text()
+    assert html.index("SQUEALS") < html.index("<h2") and html.count("<audio") == 2 and "data:image/png;base64" in html
+    assert (built / "report" / "default" / "vtk" / "ods.pvd").exists()
     assert make("-q", "all", build=built).returncode == 0

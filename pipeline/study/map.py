@@ -141,7 +141,8 @@ def write_outputs(spec, src, out: Path, quick: bool, contexts: dict, tasks: list
     for case, ctx in contexts.items():
         F = fields_of(rows, case, gammas, mus)
         title = f"{case}: dy_WR = {1e3 * ctx.dy_wr:.0f} mm, v = {3.6 * ctx.v:.0f} km/h"
-        save_figure(map_figure(gammas, mus, F, title, level), out / f"map_{case}.png", dpi=90)
+        modes = (np.asarray(ctx.wheel["f"], float), [ctx.label(i) for i in range(len(ctx.wheel["f"]))])
+        save_figure(map_figure(gammas, mus, F, title, level, modes=modes), out / f"map_{case}.png", dpi=90)
         L = F["L_F2"]
         sq = np.isfinite(L) & (L >= level)
         reasons = {}
@@ -172,4 +173,23 @@ def write_outputs(spec, src, out: Path, quick: bool, contexts: dict, tasks: list
                     cells.append(f"{v:.0f}")
             lines.append(f"| {gy:g} | " + " | ".join(cells) + " |")
         parts.append("\n".join(lines) + "\n")
+        parts.append(lw_table(F, gammas, mus, level, modes))
     save_text("\n".join(parts), out / "summary.md")
+
+
+def lw_table(F: dict, gammas, mus, level: float, modes) -> str:
+    """The sound power over the grid: L_W (dB re 1e-12 W) and the squealing mode where the case
+    squeals (the wheelset's oscillations below 200 Hz marked 'LF'), blank otherwise."""
+    from postprocess.plots.study import mode_categories
+
+    cat, names = mode_categories(F, *modes, level)
+    lines = ["L_W (dB re 1e-12 W) and the squealing mode (LF: the wheelset's oscillation below 200 Hz, not "
+             "squeal):\n", "| gamma_y \\ mu | " + " | ".join(f"{m:g}" for m in mus) + " |", "|---:|" + "---:|" * len(mus)]
+    for j, gy in enumerate(gammas):
+        cells = []
+        for i in range(len(mus)):
+            k, lw = cat[i, j], F["L_W"][i, j]
+            cells.append("" if k < 0 else "LF" if k == 0 else
+                         f"{lw:.0f} {names[k].split()[0]}" if np.isfinite(lw) else names[k].split()[0])
+        lines.append(f"| {gy:g} | " + " | ".join(cells) + " |")
+    return "\n".join(lines) + "\n"

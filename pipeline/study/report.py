@@ -40,10 +40,10 @@ def embed(summary: str, name: str, figdir: Path, src: Path) -> str:
 def studies_section(figdir: Path) -> str:
     dirs = study_dirs()
     if not dirs:
-        return ("## Studies (SPEC 7)\n\nNo study has been run yet: `make study STUDY=map` (creepage/friction map), "
+        return ("## Studies (docs/physics.md section 7)\n\nNo study has been run yet: `make study STUDY=map` (creepage/friction map), "
                 "`STUDY=damping` (wheel modal damping), `STUDY=contact` (contact-model validation); `QUICK=1` for a "
                 "quick look.\n")
-    parts = ["## Studies (SPEC 7)\n\nFrom build/studies/ (`make study STUDY=...`); tables beside each summary there.\n"]
+    parts = ["## Studies (docs/physics.md section 7)\n\nFrom build/studies/ (`make study STUDY=...`); tables beside each summary there.\n"]
     for d in dirs:
         parts.append(embed((d / "summary.md").read_text(), d.name, figdir, d))
     return "\n".join(parts)

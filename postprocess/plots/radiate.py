@@ -28,7 +28,7 @@ def radiation_figure(a: dict, case: str):
         axs[0].plot(a["tone_f"], _db(np.abs(a["tone_F2"]) ** 2, 1.0), "v", ms=5, label="tones (F2, fitted)")
     axs[0].set_ylabel("dB re 1 N (RMS)")
     axs[0].set_title(f"{case}: {a['stop_reason']}, L_F2 = {float(a['L_F2']):.1f} dB"
-                     + ("" if a["meaningful"] else f" (< {SQUEAL_LEVEL_DB:g} dB: sound power not meaningful, SPEC 6)"))
+                     + ("" if a["meaningful"] else f" (< {SQUEAL_LEVEL_DB:g} dB: sound power not meaningful, docs/physics.md section 6)"))
     tone = a["is_tone"]
     LW = _db(a["W"], 1e-12)
     top = LW.max() if np.isfinite(LW.max()) else 0.0

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from solvers.constants import SQUEAL_LEVEL_DB
+from solvers.constants import SQUEAL_F_MIN_HZ, SQUEAL_LEVEL_DB
 
 
 def _plt():
@@ -25,51 +25,109 @@ def _edges(x):
     return np.concatenate([[2 * x[0] - mid[0]], mid, [2 * x[-1] - mid[-1]]])
 
 
-MAP_PANELS = (("L_F2", "L_F2 (dB re 1 N)", "magma"), ("f_dominant", "dominant F2 frequency (Hz)", "viridis"),
-              ("L_W", "L_W (dB re 1e-12 W)", "magma"), ("f_sound", "dominant sound frequency (Hz)", "viridis"))
+LOW_LABEL = f"< {SQUEAL_F_MIN_HZ:g} Hz: wheelset oscillation, not squeal"
 
 
-def map_figure(gamma_y, mu, fields: dict, title: str, level: float = SQUEAL_LEVEL_DB):
-    """Colour maps over (gamma_y, mu) of the four map measures: fields[name] (len(mu), len(gamma_y)),
-    NaN where undefined (grey).  The frequencies are shown for squealing cases only (L_F2 >= level);
-    the L_F2 map carries the squeal contour."""
-    plt = _plt()
-    fig, axs = plt.subplots(2, 2, figsize=(11, 7.5), sharex=True, sharey=True)
-    gx, my = _edges(np.abs(gamma_y)), _edges(mu)
+def sound_frequency(fields: dict) -> np.ndarray:
+    """The sound's frequency per cell: the loudest sound entry (f_sound) where the sound power was
+    computed, else the dominant frequency of F2 (which may be a harmonic of the sound's)."""
+    fs = np.asarray(fields["f_sound"], float)
+    return np.where(np.isfinite(fs), fs, np.asarray(fields["f_dominant"], float))
+
+
+def mode_categories(fields: dict, mode_f, mode_labels, level: float = SQUEAL_LEVEL_DB):
+    """(category index per cell, names): -1 no squeal (L_F2 < level or no data), 0 a self-excited
+    oscillation below SQUEAL_F_MIN_HZ (the wheelset, LOW_LABEL), k >= 1 the wheel mode nearest in
+    frequency to the sound's frequency (names[k]: its label and frequency)."""
     L = np.asarray(fields["L_F2"], float)
-    squeal = np.isfinite(L) & (L >= level)
-    for ax, (name, label, cmap) in zip(axs.flat, MAP_PANELS):
-        z = np.array(fields[name], float)
-        if name.startswith("f_"):
-            z[~squeal] = np.nan
-        ax.set_facecolor("0.85")
-        ok = np.isfinite(z)
-        if ok.any():
-            lo, hi = np.nanmin(z), np.nanmax(z)
-            if name.startswith("f_") and lo > 0 and hi > 1.5 * lo:    # frequencies: log colour scale
-                from matplotlib.colors import LogNorm
+    f = sound_frequency(fields)
+    squeal = np.isfinite(L) & (L >= level) & np.isfinite(f)
+    mode_f = np.asarray(mode_f, float)
+    cat = np.full(L.shape, -1, int)
+    names = [LOW_LABEL]
+    index = {}
+    for ij in zip(*np.nonzero(squeal)):
+        if f[ij] < SQUEAL_F_MIN_HZ:
+            cat[ij] = 0
+            continue
+        k = int(np.argmin(np.abs(mode_f - f[ij])))
+        if k not in index:
+            index[k] = len(names)
+            names.append(f"{mode_labels[k]} {mode_f[k]:.0f} Hz")
+        cat[ij] = index[k]
+    return cat, names
 
-                kw = {"norm": LogNorm(lo, hi)}
-            else:
-                kw = {"vmin": lo, "vmax": hi if hi > lo else None}
+
+def map_figure(gamma_y, mu, fields: dict, title: str, level: float = SQUEAL_LEVEL_DB, modes=None):
+    """Maps over (gamma_y, mu) of one contact position: L_F2 with the squeal contour; the squealing
+    mode as a categorical colour with its label (``modes`` = (frequencies, labels) of the wheel's
+    modes; oscillations below SQUEAL_F_MIN_HZ marked as the wheelset's, not squeal); L_W; the sound's
+    frequency.  fields[name] (len(mu), len(gamma_y)), NaN where undefined (grey).  The creepage axis
+    is signed (gamma_y < 0: the inner wheel of an under-radial leading wheelset)."""
+    from matplotlib.colors import BoundaryNorm, ListedColormap, LogNorm
+    from matplotlib.patches import Patch, Rectangle
+    from matplotlib.ticker import FuncFormatter
+
+    plt = _plt()
+    fig, axs = plt.subplots(2, 2, figsize=(12, 8), sharex=True, sharey=True)
+    gx, my = _edges(gamma_y), _edges(mu)
+    L = np.asarray(fields["L_F2"], float)
+    f = sound_frequency(fields)
+    squeal = np.isfinite(L) & (L >= level)
+    low = squeal & (f < SQUEAL_F_MIN_HZ)
+    for ax in axs.flat:
+        ax.set_facecolor("0.85")
+    # L_F2 and the squeal contour
+    ax = axs[0, 0]
+    if np.isfinite(L).any():
+        im = ax.pcolormesh(gx, my, np.ma.masked_invalid(L), cmap="magma", shading="flat")
+        fig.colorbar(im, ax=ax, label="L_F2 (dB re 1 N)")
+        if squeal.any() and (~squeal).any() and L.shape[0] > 1 and L.shape[1] > 1:
+            ax.contour(gamma_y, mu, np.where(np.isfinite(L), L, -1e3), levels=[level], colors="w", linewidths=1.2)
+            ax.legend(handles=[plt.Line2D([], [], color="w", lw=1.2, label=f"L_F2 = {level:g} dB")], fontsize=7,
+                      loc="upper right", facecolor="0.5")
+    ax.set_title("lateral force level L_F2", fontsize=9)
+    # the squealing mode, one colour per mode
+    ax = axs[0, 1]
+    mf, ml = modes if modes is not None else (np.array([np.nan]), np.array(["?"]))
+    cat, names = mode_categories(fields, mf, ml, level)
+    colours = ["0.45"] + [plt.cm.tab10(i % 10) for i in range(len(names) - 1)]
+    if (cat >= 0).any():
+        ax.pcolormesh(gx, my, np.ma.masked_less(cat, 0), cmap=ListedColormap(colours),
+                      norm=BoundaryNorm(np.arange(len(names) + 1) - 0.5, len(names)), shading="flat")
+        used = sorted(set(cat[cat >= 0].ravel()))
+        ax.legend(handles=[Patch(color=colours[k], label=names[k]) for k in used], fontsize=7, loc="upper right",
+                  title="squealing mode", title_fontsize=7)
+    else:
+        ax.text(0.5, 0.5, "no squealing case", ha="center", va="center", transform=ax.transAxes, color="0.3")
+    ax.set_title(f"the squealing mode (grey background: L_F2 < {level:g} dB)", fontsize=9)
+    # L_W and the sound's frequency, for squeal (not the wheelset's low oscillation)
+    for ax, z, label, cmap in ((axs[1, 0], np.asarray(fields["L_W"], float), "L_W (dB re 1e-12 W)", "magma"),
+                               (axs[1, 1], f, "the sound's frequency (Hz)", "viridis")):
+        z = np.where(squeal & ~low, z, np.nan)
+        if np.isfinite(z).any():
+            lo, hi = np.nanmin(z), np.nanmax(z)
+            kw = ({"norm": LogNorm(lo, hi)} if label.startswith("the sound") and lo > 0 and hi > 1.5 * lo else
+                  {"vmin": lo, "vmax": hi if hi > lo else None})
             im = ax.pcolormesh(gx, my, np.ma.masked_invalid(z), cmap=cmap, shading="flat", **kw)
             cb = fig.colorbar(im, ax=ax, label=label)
             if "norm" in kw:                                            # plain numbers on the log scale
-                from matplotlib.ticker import FuncFormatter
-
                 plain = FuncFormatter(lambda v, _: f"{v:g}")
                 cb.ax.yaxis.set_major_formatter(plain)
                 cb.ax.yaxis.set_minor_formatter(plain)
                 cb.ax.tick_params(which="minor", labelsize=7)
         else:
-            ax.text(0.5, 0.5, "no squealing case" if name != "L_F2" else "no data", ha="center", va="center",
-                    transform=ax.transAxes, color="0.3")
-        if name == "L_F2" and squeal.any() and (~squeal).any() and L.shape[0] > 1 and L.shape[1] > 1:
-            ax.contour(np.abs(gamma_y), mu, np.where(np.isfinite(L), L, -1e3), levels=[level], colors="w",
-                       linewidths=1.2)
-        ax.set_title(label + ("" if name == "L_F2" else f" (L_F2 >= {level:g} dB)"), fontsize=9)
+            ax.text(0.5, 0.5, "no squealing case", ha="center", va="center", transform=ax.transAxes, color="0.3")
+        ax.set_title(label + f" (squeal: L_F2 >= {level:g} dB, f >= {SQUEAL_F_MIN_HZ:g} Hz)", fontsize=9)
+    for ax in axs.flat:                                                 # the wheelset's oscillations, hatched
+        for i, j in zip(*np.nonzero(low)):
+            ax.add_patch(Rectangle((gx[j], my[i]), gx[j + 1] - gx[j], my[i + 1] - my[i], facecolor="none",
+                                   edgecolor="0.3", hatch="xx", lw=0))
+    if low.any():
+        axs[1, 1].legend(handles=[Patch(facecolor="none", edgecolor="0.3", hatch="xx", label=LOW_LABEL)],
+                         fontsize=7, loc="lower right")
     for ax in axs[1]:
-        ax.set_xlabel("|gamma_y|")
+        ax.set_xlabel("gamma_y (lateral creepage, signed)")
     for ax in axs[:, 0]:
         ax.set_ylabel("mu")
     fig.suptitle(title)

@@ -84,7 +84,7 @@ def tmp_build(build, monkeypatch):
 
 def test_wav_frequency_and_level_read_back(squeal):
     d, a, rad = squeal["dir"], squeal["a"], squeal["rad"]
-    fs, p, lc, cal = WC.read_calibrated(d / "listen.wav", d / "listen.json")
+    fs, p, lc, cal = WC.read_calibrated(d / "listen_7.5m.wav", d / "listen_7.5m.json")
     assert fs == 44100 and cal["sample_rate_hz"] == 44100 and cal["bits"] == 16
     # done when: the WAV's dominant frequency is the squeal frequency (radiate's f_sound) within 0.5 %
     f_wav = WC.dominant(lc, fs)
@@ -96,7 +96,7 @@ def test_wav_frequency_and_level_read_back(squeal):
     # the onset: quieter than the limit cycle by the growth over ONSET_S (about 10/s * 3 s = 26 dB)
     first = p[: int(0.1 * fs)]
     assert WC.level(first) < float(a["L_p"]) - 20
-    comment = (d / "listen.wav").read_bytes()
+    comment = (d / "listen_7.5m.wav").read_bytes()
     from postprocess.audio import wav_comment
 
     assert f"0 dBFS sine = {cal['full_scale_sine_dB_SPL']:.2f} dB SPL" in wav_comment(comment)
@@ -111,7 +111,7 @@ def test_bands_sum_to_the_overall_level_and_match_a_filter_bank(squeal):
         totA = 10 * np.log10(np.sum(10 ** (npz["band_L_pA"] / 10)))
     assert abs(tot - float(npz["L_p"])) < 0.1 and abs(totA - float(npz["L_pA"])) < 0.1
     # second method: pyfar's IEC 61260-1 filter bank on the WAV itself
-    fs, p, lc, cal = WC.read_calibrated(d / "listen.wav", d / "listen.json")
+    fs, p, lc, cal = WC.read_calibrated(d / "listen_7.5m.wav", d / "listen_7.5m.json")
     nom, Lb = WC.filter_bank_levels(p, fs, cal["limit_cycle_start_s"], cal["duration_s"] - WC.FADE_S)
     loud = npz["band_L_p"][: len(nom)] > float(npz["L_p"]) - 70  # 16-bit floor: ~ L_p - 115 dB per band
     assert loud.sum() >= 2
@@ -128,17 +128,18 @@ def test_artifact_keys_and_report_section(squeal, tmp_build):
               "full_scale_sine_dB", "t_limit_cycle", "r_direct", "meaningful"):
         assert k in npz, k
     assert prov["config"]["listener"] == {"distance": 7.5, "height": 1.2, "ground_depth": 0.2, "ground": "rigid",
-                                          "directivity": "dipole"}
+                                          "directivity": "dipole",
+                                          "passby": {"n_bogies": 2, "bogie_spacing": 12.5, "window": 30.0}}
     assert float(npz["r_direct"]) == pytest.approx(np.hypot(7.5 - 0.75, 1.2 - 0.39))
-    assert (squeal["dir"] / "listen.png").stat().st_size > 10_000
+    assert (squeal["dir"] / "listen_7.5m.png").stat().st_size > 10_000
     from pipeline.report import listen_section
 
     figdir = tmp_build / "figs"
     figdir.mkdir(exist_ok=True)
     text = listen_section("default", figdir)
-    assert "## What a listener hears" in text and "(figures/default_listen.wav)" in text
-    assert "![1/3-octave spectrum at the receiver](figures/default_listen.png)" in text
-    assert (figdir / "default_listen.wav").read_bytes() == (squeal["dir"] / "listen.wav").read_bytes()
+    assert "## What a listener hears" in text and "(figures/default_listen_7.5m.wav)" in text
+    assert "![1/3-octave spectrum at the receiver](figures/default_listen_7.5m.png)" in text
+    assert (figdir / "default_listen_7.5m.wav").read_bytes() == (squeal["dir"] / "listen_7.5m.wav").read_bytes()
 
 
 def test_receiver_from_the_command_line(squeal, tmp_build):
@@ -148,6 +149,56 @@ def test_receiver_from_the_command_line(squeal, tmp_build):
     # the far receiver is quieter by about the spherical spreading (ground effects aside)
     drop = float(squeal["a"]["L_p_incoherent"]) - float(a["L_p_incoherent"])
     assert 8.0 < drop < 13.0
+
+
+def test_receivers_are_kept_side_by_side(squeal, tmp_build):
+    """A run at 25 m writes listen_25m.* and leaves the 7.5 m result (listen_7.5m.*, listen.npz) as it was;
+    the report shows both receivers in one table."""
+    d = squeal["dir"]
+    before = {n: (d / n).read_bytes() for n in ("listen.npz", "listen_7.5m.npz", "listen_7.5m.wav")}
+    far = LS.run_listen("default", distance=25.0)
+    assert LS.receiver_tag(25.0, 1.2) == "25m" and LS.receiver_tag(7.5, 3.5) == "7.5m_3.5m"
+    for n, b in before.items():
+        assert (d / n).read_bytes() == b, n
+    for s in (".npz", ".wav", ".json", ".png", "_bands.csv"):
+        assert (d / f"listen_25m{s}").exists(), s
+    assert LS.receivers("default")[:2] == ["7.5m", "25m"]
+    near, _ = LS.load_listening("default", "7.5m")
+    assert float(near["distance"]) == 7.5 and float(LS.load_listening("default", "25m")[0]["distance"]) == 25.0
+    assert float(far["L_pA"]) < float(near["L_pA"])
+    # the bands CSV reads back into the npz's band levels
+    rows = np.genfromtxt(d / "listen_25m_bands.csv", delimiter=",", names=True)
+    np.testing.assert_allclose(rows["L_p_dB"], far["band_L_p"], atol=1e-9)
+    from pipeline.report import listen_section
+
+    figdir = tmp_build / "figs_side"
+    figdir.mkdir(exist_ok=True)
+    text = listen_section("default", figdir)
+    assert "| 7.5m (the case's) | 7.5 | 1.2 |" in text and "| 25m | 25 | 1.2 |" in text
+    for path in d.glob("listen_25m*"):
+        path.unlink()
+
+
+def test_passby_written_beside_the_receiver(squeal, tmp_build):
+    """The pass-by at the case's receiver: its files, and its loudest moment against the listen stage's
+    steady level with the wheel abreast (the same propagation; the second wheel 12.5 m away adds < 3 dB,
+    the F weighting's 125 ms smooths the ground interference)."""
+    d = squeal["dir"]
+    for s in (".npz", ".wav", ".json", ".png"):
+        assert (d / f"passby_7.5m{s}").exists(), s
+    b, prov = artifacts.load_npz(d / "passby_7.5m.npz", "passby")
+    assert prov["config"]["passby"] == {"n_bogies": 2, "bogie_spacing": 12.5, "window": 30.0}
+    assert float(b["T"]) == pytest.approx((60 + 12.5) / (50 / 3.6), abs=1e-3)
+    L_pA = float(squeal["a"]["L_pA"])
+    assert -2.0 < float(b["L_AFmax"]) - L_pA < 3.5
+    assert float(b["L_Aeq"]) < float(b["L_AFmax"])
+    from scipy.io import wavfile
+
+    fs, x = wavfile.read(d / "passby_7.5m.wav")
+    cal = json.loads((d / "passby_7.5m.json").read_text())["payload"]
+    p = x.astype(float) * cal["pa_per_count"]
+    assert fs == 44100 and p.size == pytest.approx(float(b["T"]) * fs, abs=2)
+    assert WC.level(p) == pytest.approx(float(b["L_eq"]), abs=0.05)          # the file holds the passage
 
 
 def _cases_with(tmp_path, monkeypatch, table: str):
@@ -190,13 +241,13 @@ def test_non_squealing_case_is_refused_unless_silent_is_asked(tmp_build, monkeyp
     write_simulate(t, F, tf, Ff)
     RS.run_radiate("default")
     out = paths.case_dir("default")
-    for name in ("listen.npz", "listen.wav", "listen.json", "listen.png"):
-        (out / name).unlink(missing_ok=True)
+    for path in out.glob("listen*"):
+        path.unlink()
     with pytest.raises(ConfigError, match=r"does not squeal: L_F2 = -?\d+\.\d dB < 10 dB.*--allow-silent"):
         LS.run_listen("default")
-    assert not list(out.glob("listen.*"))
+    assert not list(out.glob("listen*"))
     a = LS.run_listen("default", allow_silent=True)
-    fs, p, lc, cal = WC.read_calibrated(out / "listen.wav", out / "listen.json")
+    fs, p, lc, cal = WC.read_calibrated(out / "listen_7.5m.wav", out / "listen_7.5m.json")
     assert fs == 44100 and p.size > 0 and not p.any() and cal["silent"] and bool(a["silent"])
     assert not bool(a["meaningful"]) and np.isfinite(float(a["L_p"]))
 
@@ -213,4 +264,4 @@ def test_stale_listening_is_reported_not_shown(squeal, tmp_build, tmp_path, monk
 
     figdir = tmp_path / "figs"
     figdir.mkdir()
-    assert "Not shown:" in listen_section("default", figdir) and not list(figdir.iterdir())
+    assert "not shown: " in listen_section("default", figdir) and not list(figdir.iterdir())
