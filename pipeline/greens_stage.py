@@ -40,6 +40,7 @@ from solvers.constants import F_MAX_HZ
 
 from . import artifacts, paths
 from .atomic import save_figure
+from .contact_plane import case_projection
 
 log = logging.getLogger("pipeline.greens")
 
@@ -157,6 +158,7 @@ def run_greens(case: str) -> dict:
     t1 = time.perf_counter()
     rail, cached = rail_greens(pr, cfg["rail"], yr, v, dt)
     arrays.update(rail)
+    arrays = case_projection(case, arrays)  # [contact] angle: the contact plane's frame (pipeline/contact_plane.py)
     t2 = time.perf_counter()
     out = paths.case_dir(case)
     plot_kernels(arrays, out / "greens.png", case)

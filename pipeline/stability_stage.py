@@ -28,7 +28,7 @@ def case_linear_model(case: str, mu: float | None = None, gamma_y: float | None 
     from solvers.interaction import WheelModes, contact_model
     from solvers.stability import linearise
 
-    from .simulate_stage import simulate_config
+    from .simulate_stage import case_preload, simulate_config
 
     c, ccfg, gcfg, _ = simulate_config(case)
     out = paths.case_dir(case)
@@ -40,7 +40,7 @@ def case_linear_model(case: str, mu: float | None = None, gamma_y: float | None 
     mu = c["friction"]["mu"] if mu is None else mu
     gamma_y = c["kinematics"]["gamma_y"] if gamma_y is None else gamma_y
     lm = linearise(wheel, gr["rail_kernel"], contact_model(con, mu), dt=c["time"]["dt"],
-                   v=c["kinematics"]["speed"], gamma_y=gamma_y, preload=c["loading"]["preload"])
+                   v=c["kinematics"]["speed"], gamma_y=gamma_y, preload=case_preload(c, con))
     return c, lm, labels, np.asarray(gr["wheel_f"], float)
 
 
