@@ -1,0 +1,203 @@
+"""The two-point time loop (issue 26): two contact patches between one wheel and one rail -- tread
+and flange, or two tread zones -- each with its own normal table, tangential compliance and
+friction curve, coupled through the structures (SPEC 3.5 per point, thesis ch. 7's multi-point
+contact as future work).
+
+Structures at two points.  The wheel's modal filters take the modal force of both patches,
+P_r = phi_r(a) . dF_a + phi_r(b) . dF_b, and return the displacement at both (phi(a), phi(b):
+the shapes at the two points, each in its own contact frame): the modal sum gives the point and
+the cross receptances exactly.  The rail's moving kernel at two head points is a 4 x 4 kernel of
+2 x 2 blocks g_pq (response at p to a force at q), convolved block by block with the exact
+partitioned convolver (``solvers.partitioned``).  xi_p = xi^R_p - xi^W_p as in the one-point loop.
+
+Each point solves the one-point contact of [4.16]-[4.31] (``kernel._point_contact``) with its own
+approach (static approach of the point minus its relative displacement along its own normal),
+creepages and tables.  Point a is the one-point loop's point: when point b carries no load (its
+approach never reaches its table), every force deviation of b is zero, its contributions to the
+filters and convolutions are exact zeros and point a's records are the one-point loop's
+(tests/interaction/test_two_point.py).
+"""
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numba
+import numpy as np
+
+from ..contact.compliance import table_compliance
+from ..contact.norm import table_force
+from ..modal_filter import FilterState, modal_filter
+from ..partitioned import partitioned_step
+from .inputs import FULL_SLIP
+from .kernel import _point_contact
+from .result import store
+from .stop import record_window
+
+
+class TwoPointFilter(NamedTuple):
+    """The wheel's recursive modal filters (``solvers.modal_filter.ModalFilter``) with inputs and
+    outputs at two points: w_in, w_out (M, 4) = (a2, a3, b2, b3); u_coef (10, M0) = Re z, Im z,
+    w_in (4 rows), w_out (4 rows) of the kind-0 modes; state advanced IN PLACE."""
+    kind: np.ndarray
+    z: np.ndarray
+    p2: np.ndarray
+    w_in: np.ndarray
+    w_out: np.ndarray
+    u_coef: np.ndarray
+    over: np.ndarray
+    state: FilterState
+
+
+def two_point_filter(dt: float, f_r, modal_mass, zeta, phi_a, phi_b) -> TwoPointFilter:
+    """The modal filters of ``modal_filter(dt, f_r, modal_mass, zeta, phi)`` for the shapes
+    phi_a, phi_b (M, 2) at the two points; at rest."""
+    a = modal_filter(dt, f_r, modal_mass, zeta, phi_a)
+    b = modal_filter(dt, f_r, modal_mass, zeta, phi_b)
+    uc = np.ascontiguousarray(np.vstack([a.u_coef[0:4], b.u_coef[2:4], a.u_coef[4:6], b.u_coef[4:6]]))
+    return TwoPointFilter(a.kind, a.z, a.p2, np.ascontiguousarray(np.hstack([a.w_in, b.w_in])),
+                          np.ascontiguousarray(np.hstack([a.w_out, b.w_out])), uc, a.over, a.state)
+
+
+@numba.njit(cache=True)
+def filter_step2(filt, F2a, F3a, F2b, F3b):
+    """njit: push the forces of step n at both points into the modal filters; return the
+    displacements (xi2a, xi3a, xi2b, xi3b) at step n + 1 (``solvers.modal_filter.filter_step``
+    with the second point's terms added after the first's)."""
+    kind, z, p2, w_in, w_out, uc, over, state = filt
+    q, a, us = state
+    x2 = 0.0
+    x3 = 0.0
+    y2 = 0.0
+    y3 = 0.0
+    for j in range(uc.shape[1]):
+        ur = us[0, j] + uc[2, j] * F2a + uc[3, j] * F3a + uc[4, j] * F2b + uc[5, j] * F3b
+        ui = us[1, j]
+        nr = uc[0, j] * ur - uc[1, j] * ui
+        ni = uc[0, j] * ui + uc[1, j] * ur
+        us[0, j] = nr
+        us[1, j] = ni
+        x2 += uc[6, j] * ni
+        x3 += uc[7, j] * ni
+        y2 += uc[8, j] * ni
+        y3 += uc[9, j] * ni
+    for i in range(over.shape[0]):
+        r = over[i]
+        P = w_in[r, 0] * F2a + w_in[r, 1] * F3a + w_in[r, 2] * F2b + w_in[r, 3] * F3b
+        v = P + z[r] * q[r] + a[r]
+        a[r] = p2[r] * (a[r] + P)
+        q[r] = v
+        y = v.real
+        x2 += w_out[r, 0] * y
+        x3 += w_out[r, 1] * y
+        y2 += w_out[r, 2] * y
+        y3 += w_out[r, 3] * y
+    return x2, x3, y2, y3
+
+
+class PointState(NamedTuple):
+    """Per point, changed in place by the loop: s (6,) = xi2, xi3, xi2_old, u1, u2 (compliance
+    deformation of the last step), sig; s_old (1,) = the sigma before."""
+    s: np.ndarray
+
+
+def point_state(u_ref) -> np.ndarray:
+    """(7,) xi2, xi3, xi2_old, u1, u2, sig, sig_old at the reference state."""
+    return np.array([0.0, 0.0, 0.0, u_ref[0], u_ref[1], 0.0, 0.0])
+
+
+@numba.njit(cache=True, inline="always")
+def contact_step(n, st, p, tab, counters, row):
+    """One point's contact at step n (the one-point loop's step, ``kernel.run_point``): state
+    st (7,), LoopParams p, PointTables tab; writes the record row (8,); returns (F1, F2, F3)."""
+    ngx = p.gx.shape[0]
+    ngy = p.gy.shape[0]
+    gxn = p.gx[n if n < ngx else ngx - 1]
+    gyn = p.gy[n if n < ngy else ngy - 1]
+    dt = p.dt
+    xi2 = st[0]
+    app = p.xi3_static - st[1]
+    F3 = table_force(app, tab.xi3_nodes, tab.q_nodes)
+    b1 = gxn * p.v - st[3] / dt
+    b2 = gyn * p.v - st[4] / dt + p.slip_sign * (xi2 - st[2]) / dt
+    if F3 > 0.0:
+        A1 = table_compliance(app, tab.xi3_nodes, tab.A1_nodes)
+        A2 = table_compliance(app, tab.xi3_nodes, tab.A2_nodes)
+        sig = st[5]
+        guess = 2.0 * sig - st[6]
+        st[6] = sig
+        F1, F2, s1, s2, sig, it, nb, m = _point_contact(b1, b2, A1 / dt, A2 / dt, F3, tab.s_nodes, tab.mu_nodes,
+                                                        tab.slopes, p.eps, guess)
+        st[5] = sig
+        st[3] = A1 * F1
+        st[4] = A2 * F2
+        counters[0] += it
+        if it > counters[1]:
+            counters[1] = it
+        counters[2] += nb
+        state = 2.0 if m >= FULL_SLIP * tab.mu_nodes[tab.mu_nodes.shape[0] - 1] else 1.0
+    else:
+        F1 = 0.0
+        F2 = 0.0
+        F3 = 0.0
+        s1 = b1
+        s2 = b2
+        st[3] = 0.0
+        st[4] = 0.0
+        state = 0.0
+        counters[3] += 1
+    row[0] = F1
+    row[1] = F2
+    row[2] = F3
+    row[3] = s1
+    row[4] = s2
+    row[5] = xi2
+    row[6] = st[1]
+    row[7] = state
+    st[2] = xi2
+    return F1, F2, F3
+
+
+@numba.njit(cache=True)
+def run_two_points(filt, r_aa, r_ab, r_ba, r_bb, pa, pb, tab_a, tab_b, rec_a, rec_b, win):
+    """The two-point time loop (module notes), entirely in numba.  filt: TwoPointFilter; r_pq:
+    PartitionedConvolver of the rail's block g_pq (response at p to a force at q); pa, pb:
+    LoopParams of the points (n_steps, dt, v of pa rule; the kick of each point is its own);
+    tab_a, tab_b: PointTables; rec_a, rec_b: Records (written in place); win: Windows of the
+    stop rule on the summed forces F2a + F2b, F3a + F3b.  Returns (steps done, stop reason)."""
+    sa = np.array([0.0, 0.0, 0.0, pa.u_ref[0], pa.u_ref[1], 0.0, 0.0])
+    sb = np.array([0.0, 0.0, 0.0, pb.u_ref[0], pb.u_ref[1], 0.0, 0.0])
+    row_a = np.zeros(8)
+    row_b = np.zeros(8)
+    iw = 0
+    jw = 0
+    reason = 0
+    done = 0
+    for n in range(pa.n_steps):
+        F1a, F2a, F3a = contact_step(n, sa, pa, tab_a, rec_a.counters, row_a)
+        F1b, F2b, F3b = contact_step(n, sb, pb, tab_b, rec_b.counters, row_b)
+        store(n, row_a, rec_a)
+        store(n, row_b, rec_b)
+        d2a = F2a - pa.F_ref[1]
+        d3a = F3a - pa.F_ref[2]
+        d2b = F2b - pb.F_ref[1]
+        d3b = F3b - pb.F_ref[2]
+        if n == 0:
+            d2a += pa.kick[0]
+            d3a += pa.kick[1]
+            d2b += pb.kick[0]
+            d3b += pb.kick[1]
+        w2a, w3a, w2b, w3b = filter_step2(filt, d2a, d3a, d2b, d3b)
+        ra2, ra3 = partitioned_step(r_aa, d2a, d3a)
+        qa2, qa3 = partitioned_step(r_ab, d2b, d3b)
+        rb2, rb3 = partitioned_step(r_ba, d2a, d3a)
+        qb2, qb3 = partitioned_step(r_bb, d2b, d3b)
+        sa[0] = (ra2 + qa2) + w2a
+        sa[1] = (ra3 + qa3) + w3a
+        sb[0] = (qb2 + rb2) + w2b
+        sb[1] = (qb3 + rb3) + w3b
+        if win.nw > 0:
+            jw, iw, reason = record_window(F2a + F2b, F3a + F3b, n + 1, pa.dt, win, jw, iw)
+        done = n + 1
+        if reason != 0:
+            break
+    return done, reason
