@@ -1,0 +1,83 @@
+"""Two-point time loop benchmark (issue 26, solvers/timeloop/two_point.py): `run() -> str`.
+
+    OMP_NUM_THREADS=1 .venv/bin/python -m benchmarks two_point --update
+
+8 s of rolling at dt = 36 us, no early stop, after JIT warm-up, one core, the one-point loop and
+the two-point loop side by side in one run (alternated, minimum of 3 each).  Structures of the
+default case (build/cases/default/greens.npz: 37 C20 modes, the 4096-lag BV50 moving kernel;
+else the test stand-ins of tests.interaction); the two-point runs use that kernel for every rail
+block (the cost of a 4 x 4 moving kernel of that length) and the wheel's shapes at the first
+point for the second too; contact: the default contact (or its Hertz stand-in) at both points.
+"""
+from __future__ import annotations
+
+import os
+
+import numpy as np
+
+from benchmarks.timing import min_time
+from solvers.interaction import WheelModes, simulate
+from solvers.timeloop.two_point_driver import SecondPoint, simulate_two
+from tests.interaction import CONTACT, DT, GAMMA_Y, PRELOAD, V, beam_kernel, c20_modes, default_contact, ROOT
+
+GREENS = ROOT / "build" / "cases" / "default" / "greens.npz"
+
+
+def structures():
+    if GREENS.exists():
+        with np.load(GREENS) as d:
+            return (WheelModes(d["wheel_f"], d["wheel_mass"], d["wheel_zeta"], d["wheel_phi"]), d["rail_kernel"],
+                    "build/cases/default/greens.npz")
+    wheel, _ = c20_modes()
+    return wheel, beam_kernel(DT, V, n_lags=4096, n_t=8192), "tests.interaction stand-ins (C20 modes, beam kernel)"
+
+
+def run() -> str:
+    load0 = os.getloadavg()[0]
+    wheel, g, src = structures()
+    contact = default_contact(0.35)
+    kw = dict(dt=DT, v=V, gamma_y=GAMMA_Y, stop=None, preload=PRELOAD)
+    far = SecondPoint(contact, wheel.phi, separation=1e-3)                  # never reached
+    shared = SecondPoint(contact, wheel.phi, separation=0.0)                # two identical patches
+    blocks = (g, g, g, g)
+    runs = {
+        "one point (the simulate stage's loop)": lambda: simulate(wheel, g, contact, duration=8.0, **kw),
+        "two points, the second never loaded": lambda: simulate_two(wheel, blocks, contact, far, duration=8.0, **kw),
+        "two points, both loaded (two patches sharing the load)":
+            lambda: simulate_two(wheel, blocks, contact, shared, duration=8.0, **kw),
+    }
+    simulate(wheel, g, contact, duration=0.01, **kw)                        # JIT warm-up / cache load
+    simulate_two(wheel, blocks, contact, shared, duration=0.01, **kw)
+    times = {k: [] for k in runs}
+    for _ in range(3):                                                      # alternated: same machine state
+        for k, f in runs.items():
+            times[k].append(min_time(f, 1))
+    t = {k: min(v) for k, v in times.items()}
+    t1 = t["one point (the simulate stage's loop)"]
+    n = int(round(8.0 / DT))
+    rows = [f"| {k} | {v:.3f} s | {1e9 * v / n:.0f} ns | {v / t1:.2f} |" for k, v in t.items()]
+    worst = max(v / t1 for v in t.values())
+    load1 = os.getloadavg()[0]
+    return f"""## Two contact points
+
+`solvers/timeloop/two_point.py`, `OMP_NUM_THREADS=1 .venv/bin/python -m benchmarks two_point --update`. 8 s of rolling
+at dt = 36 us ({n:,} steps), point-contact model with tables, no early stop, one core, after JIT warm-up; the
+three loops alternated three times in one run, the minimum of each. Structures: {src} ({len(wheel.f_r)} wheel modes,
+rail kernel {g.shape[0]} lags, partitioned convolution); the two-point loop convolves four rail blocks of that length
+(the 4 x 4 moving kernel) and runs the modal filters with inputs and outputs at both points. Contact:
+{'build/cases/default/contact.npz' if CONTACT.exists() else 'the Hertz stand-in'} at both points, mu = 0.35,
+gamma_y = {GAMMA_Y}. Load average {load0:.1f} at the start, {load1:.1f} at the end (2 cores shared by other jobs:
+absolute times are noisy, the ratios are side by side).
+
+| run (8 s) | wall | per step | / one point |
+|---|---:|---:|---:|
+{chr(10).join(rows)}
+
+Target (issue 26): two points under 2x the one-point time: **{'met' if worst < 2.0 else 'NOT met'}** (worst
+{worst:.2f}x). The rail's four blocks are 4x the one-point rail convolution's multiply-adds; the contact solve runs
+twice.
+"""
+
+
+if __name__ == "__main__":
+    print(run())
