@@ -61,3 +61,9 @@ def normal_preload(preload: float, angle: float) -> float:
     if abs(angle) >= 0.5 * math.pi:
         raise ValueError(f"contact angle {angle} rad: the normal must not be horizontal")
     return float(preload) / math.cos(angle)
+
+
+def project_transfer(G, angle_out: float, angle_in: float) -> np.ndarray:
+    """R_out^T G R_in: a transfer receptance (or kernel) from a force in one contact frame to the
+    displacement in another (two contact points, each with its own frame)."""
+    return np.einsum("ki,...kl,lj->...ij", rotation(angle_out), np.asarray(G), rotation(angle_in))
