@@ -38,6 +38,10 @@ def contact_setup(case: str) -> tuple[dict, dict, dict, object, dict]:
     cfg = {"case": {k: c[k] for k in ("contact", "kinematics", "loading", "time")},
            "wheel": {k: pw[k] for k in ("tyre", "flange", "material")}, "rail": pr, "mu_values": MU_VALUES.tolist(),
            "dy": DY, "running_surfaces": geo.config}
+    if c["contact"].get("points", 1) == 2:  # [contact] points = 2: the second zone must exist (one-line error)
+        from .second_point import second_zone
+
+        second_zone(case, c, geo)
     return c, pw, pr, geo, cfg
 
 
@@ -146,6 +150,10 @@ def run_contact(case: str) -> dict:
     c, pw, pr, geo, cfg = contact_setup(case)
     t0 = time.perf_counter()
     arrays = build_contact(c, pw, geo)
+    if c["contact"].get("points", 1) == 2:  # [contact] points = 2: the second patch (pipeline/second_point.py)
+        from .second_point import second_contact_arrays
+
+        arrays.update(second_contact_arrays(case, c, pw, geo, float(arrays["preload_normal"])))
     out = paths.case_dir(case)
     plot_rf(arrays, out / "contact_rf.png", f"{case}: dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm")
     artifacts.save_npz(out / "contact.npz", "contact", cfg, **arrays)
