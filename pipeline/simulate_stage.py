@@ -43,6 +43,10 @@ def run_simulate(case: str) -> dict:
     gr, _ = artifacts.load_npz(out / "greens.npz", "greens", gcfg, make_target=f"greens CASE={case}")
     wheel = WheelModes(gr["wheel_f"], gr["wheel_mass"], gr["wheel_zeta"], gr["wheel_phi"])
     cm = contact_model(con, c["friction"]["mu"])
+    if c["contact"].get("points", 1) == 2:  # [contact] points = 2: the two-point loop (pipeline/two_point_simulate.py)
+        from .two_point_simulate import simulate_two_point_case
+
+        return simulate_two_point_case(case, c, con, gr, cm, wheel, cfg)
     res = simulate(wheel, gr["rail_kernel"], cm, dt=c["time"]["dt"], v=c["kinematics"]["speed"],
                    gamma_y=c["kinematics"]["gamma_y"], gamma_x=c["kinematics"]["gamma_x"],
                    preload=case_preload(c, con), duration=c["time"]["duration"],
