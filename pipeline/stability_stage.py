@@ -52,6 +52,10 @@ def run_stability(case: str) -> dict:
     t0 = time.perf_counter()
     c, lm, labels, f_open = case_linear_model(case)
     roots = screen(lm)
+    if c["contact"].get("points", 1) == 2:  # [contact] points = 2: the two-point screen (pipeline/two_point_simulate.py)
+        from .two_point_simulate import case_two_point_roots
+
+        roots = case_two_point_roots(case)
     wall = time.perf_counter() - t0
     mode = np.array([r.mode for r in roots], np.int64)
     arrays = {"f_hz": np.array([r.f_hz for r in roots]), "sigma": np.array([r.sigma for r in roots]),

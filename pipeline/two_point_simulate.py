@@ -29,20 +29,27 @@ def second_creepages(c: dict, con) -> tuple[float, float]:
     return (1.0 + gx) * r_b / r_a - 1.0, gy * cb / ca
 
 
-def run_two_point(c: dict, con, gr, cm, wheel, store_every: int = 10):
-    """(TwoPointResult, simulate.npz arrays) of a two-point case."""
-    from solvers.timeloop.two_point_driver import SecondPoint, simulate_two
+def second_point(c: dict, con, gr):
+    """(SecondPoint, rail blocks) of a two-point case from its contact and greens arrays."""
+    from solvers.timeloop.two_point_driver import SecondPoint
 
     from .second_point import second_contact_model
 
-    mu = c["friction"]["mu"]
     gx_b, gy_b = second_creepages(c, con)
     profiles = c["contact"].get("angle", "none") != "none"
     cos_a = math.cos(float(con["contact_angle"])) if profiles else 1.0
     cos_b = math.cos(float(con["b_contact_angle"])) if profiles else 1.0
-    second = SecondPoint(second_contact_model(con, mu), np.asarray(gr["b_wheel_phi"], float),
+    second = SecondPoint(second_contact_model(con, c["friction"]["mu"]), np.asarray(gr["b_wheel_phi"], float),
                          float(con["b_separation"]), gamma_x=gx_b, gamma_y=gy_b, cos_a=cos_a, cos_b=cos_b)
-    blocks = tuple(gr[f"rail_kernel_{k}"] for k in ("aa", "ab", "ba", "bb"))
+    return second, tuple(gr[f"rail_kernel_{k}"] for k in ("aa", "ab", "ba", "bb"))
+
+
+def run_two_point(c: dict, con, gr, cm, wheel, store_every: int = 10):
+    """(TwoPointResult, simulate.npz arrays) of a two-point case."""
+    from solvers.timeloop.two_point_driver import simulate_two
+
+    second, blocks = second_point(c, con, gr)
+    gx_b, gy_b = second.gamma_x, second.gamma_y
     res = simulate_two(wheel, blocks, cm, second, dt=c["time"]["dt"], v=c["kinematics"]["speed"],
                        gamma_y=c["kinematics"]["gamma_y"], gamma_x=c["kinematics"]["gamma_x"],
                        preload=c["loading"]["preload"], duration=c["time"]["duration"], store_every=store_every)
@@ -79,3 +86,29 @@ def simulate_two_point_case(case: str, c: dict, con, gr, cm, wheel, cfg: dict) -
         1e-3 * res.N_static[0], 1e-3 * res.N_static[1], m["L_F2"], m["L_F2_a"], m["L_F2_b"], m["f_dominant"],
         out / "simulate.npz")
     return arrays
+
+
+def two_point_roots(c: dict, con, gr, wheel, cm) -> list:
+    """The two-point screen's wheel roots of a case (``solvers.stability_two``)."""
+    from solvers.stability_two import linearise_two, wheel_roots
+
+    second, blocks = second_point(c, con, gr)
+    lm = linearise_two(wheel, blocks, cm, second, dt=c["time"]["dt"], v=c["kinematics"]["speed"],
+                       gamma_y=c["kinematics"]["gamma_y"], gamma_x=c["kinematics"]["gamma_x"],
+                       preload=c["loading"]["preload"])
+    return wheel_roots(lm)
+
+
+def case_two_point_roots(case: str) -> list:
+    """``two_point_roots`` of a case from its artifacts (the stability stage's two-point screen)."""
+    from solvers.interaction import WheelModes, contact_model
+
+    from . import artifacts, paths
+    from .simulate_stage import simulate_config
+
+    c, ccfg, gcfg, _ = simulate_config(case)
+    out = paths.case_dir(case)
+    con, _ = artifacts.load_npz(out / "contact.npz", "contact", ccfg, make_target=f"contact CASE={case}")
+    gr, _ = artifacts.load_npz(out / "greens.npz", "greens", gcfg, make_target=f"greens CASE={case}")
+    wheel = WheelModes(gr["wheel_f"], gr["wheel_mass"], gr["wheel_zeta"], gr["wheel_phi"])
+    return two_point_roots(c, con, gr, wheel, contact_model(con, c["friction"]["mu"]))
