@@ -82,14 +82,14 @@ def static_state(ca: ContactModel, cb: ContactModel, preload: float, separation:
     if table_force((d0 - separation) * cos_b, cb.xi3_nodes, cb.q_nodes) <= 0.0:
         return xa, (d0 - separation) * cos_b, Na1, 0.0         # the second patch is not reached
 
-    def load(d):
+    def vertical_load(d):
         return (table_force(d * cos_a, ca.xi3_nodes, ca.q_nodes) * cos_a
                 + table_force((d - separation) * cos_b, cb.xi3_nodes, cb.q_nodes) * cos_b)
 
-    lo, hi = 0.0, d0                      # load(0) < preload <= load(d0): a alone carries it at d0
+    lo, hi = 0.0, d0                      # vertical_load(0) < preload <= vertical_load(d0): a alone carries it at d0
     for _ in range(200):
         mid = 0.5 * (lo + hi)
-        if load(mid) < preload:
+        if vertical_load(mid) < preload:
             lo = mid
         else:
             hi = mid
