@@ -21,7 +21,6 @@ such node of the rail file's ``contact.y`` (greens.npz ``b_y_rail_model``).
 """
 from __future__ import annotations
 
-import logging
 from dataclasses import dataclass
 from types import SimpleNamespace
 
@@ -29,8 +28,6 @@ import numpy as np
 
 from . import paths
 from .config import ConfigError
-
-log = logging.getLogger("pipeline.contact")
 
 SAMPLE = 2.5e-5      # m: profile sampling of the turned profiles
 REACH = 0.012        # m: half-width of the turned profiles about the zone
@@ -55,9 +52,9 @@ def second_zone(name: str, c: dict, geo) -> SecondZone:
     rc = geo.contact
     if rc.second is None or not np.isfinite(rc.second[0]):
         raise ConfigError(str(paths.case_file(name)), detail=(
-            f"contact.points = 2: case '{name}', dy_WR = {1e3 * c['contact']['dy_wr']:+.2f} mm: the profiles have no second contact "
-            f"zone within 0.25 mm of the contact (y^W = {1e3 * rc.y_wheel:+.2f} mm); use points = 1 or another "
-            f"offset"))
+            f"contact.points = 2: case '{name}', dy_WR = {1e3 * c['contact']['dy_wr']:+.2f} mm: the profiles have no "
+            f"second contact zone within 0.25 mm of the contact (y^W = {1e3 * rc.y_wheel:+.2f} mm); use points = 1 "
+            f"or another offset"))
     y2, e = float(rc.second[0]), float(rc.second[1])
     Y2 = y2 + rc.shift
     delta = float(np.arctan(geo.rail_track.slope(Y2)))

@@ -52,7 +52,7 @@ def run_stability(case: str) -> dict:
     t0 = time.perf_counter()
     c, lm, labels, f_open = case_linear_model(case)
     roots = screen(lm)
-    if c["contact"].get("points", 1) == 2:  # [contact] points = 2: the two-point screen (pipeline/two_point_simulate.py)
+    if c["contact"].get("points", 1) == 2:  # [contact] points = 2: the two-point screen (two_point_simulate.py)
         from .two_point_simulate import case_two_point_roots
 
         roots = case_two_point_roots(case)

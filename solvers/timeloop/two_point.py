@@ -94,17 +94,6 @@ def filter_step2(filt, F2a, F3a, F2b, F3b):
     return x2, x3, y2, y3
 
 
-class PointState(NamedTuple):
-    """Per point, changed in place by the loop: s (6,) = xi2, xi3, xi2_old, u1, u2 (compliance
-    deformation of the last step), sig; s_old (1,) = the sigma before."""
-    s: np.ndarray
-
-
-def point_state(u_ref) -> np.ndarray:
-    """(7,) xi2, xi3, xi2_old, u1, u2, sig, sig_old at the reference state."""
-    return np.array([0.0, 0.0, 0.0, u_ref[0], u_ref[1], 0.0, 0.0])
-
-
 @numba.njit(cache=True, inline="always")
 def contact_step(n, st, p, tab, counters, row):
     """One point's contact at step n (the one-point loop's step, ``kernel.run_point``): state

@@ -157,7 +157,8 @@ def test_two_points_and_contact_angle_report():
         f"| default (angle \"none\") | 0 | {Q / 1e3:.1f} | {sim0['stop_reason']} | {float(sim0['L_F2']):.2f} | "
         f"{float(sim0['f_dominant']):.2f} | {st0['label'][int(np.argmax(st0['sigma']))]} "
         f"{st0['f_hz'][int(np.argmax(st0['sigma']))]:.1f} Hz, {st0['sigma'].max():+.2f}/s |",
-        f"| default_angle | {math.degrees(delta):+.2f} deg (rail {math.degrees(float(ga_['contact_angle_rail'])):+.2f}) | "
+        f"| default_angle | {math.degrees(delta):+.2f} deg "
+        f"(rail {math.degrees(float(ga_['contact_angle_rail'])):+.2f}) | "
         f"{float(ca_['preload_normal']) / 1e3:.2f} | {sa_['stop_reason']} | {float(sa_['L_F2']):.2f} | {fa_loop:.2f} | "
         f"{sta['label'][top_a]} {fa_screen:.1f} Hz, {sta['sigma'][top_a]:+.2f}/s |",
         "",
