@@ -95,55 +95,52 @@ def filter_step2(filt, F2a, F3a, F2b, F3b):
 
 
 @numba.njit(cache=True, inline="always")
-def contact_step(n, st, p, tab, counters, row):
-    """One point's contact at step n (the one-point loop's step, ``kernel.run_point``): state
-    st (7,), LoopParams p, PointTables tab; writes the record row (8,); returns (F1, F2, F3)."""
-    ngx = p.gx.shape[0]
-    ngy = p.gy.shape[0]
-    gxn = p.gx[n if n < ngx else ngx - 1]
-    gyn = p.gy[n if n < ngy else ngy - 1]
-    dt = p.dt
-    xi2 = st[0]
-    app = p.xi3_static - st[1]
-    F3 = table_force(app, tab.xi3_nodes, tab.q_nodes)
-    b1 = gxn * p.v - st[3] / dt
-    b2 = gyn * p.v - st[4] / dt + p.slip_sign * (xi2 - st[2]) / dt
+def contact_step(gxn, gyn, v, dt, slip_sign, eps, app, db2, u1p, u2p, sig, sig_old, xi3_nodes, q_nodes, A1_nodes,
+                 A2_nodes, s_nodes, mu_nodes, slopes, mu_top, counters):
+    """One point's contact (the one-point loop's step, ``kernel.run_point``, same arithmetic) at
+    approach ``app`` with the structural slip term db2 = slip_sign (xi2 - xi2_old) / dt.
+    Returns (F1, F2, F3, s1, s2, state, u1p, u2p, sig, sig_old): the forces, slips and contact
+    state of the step and the point's state for the next."""
+    F3 = table_force(app, xi3_nodes, q_nodes)
+    b1 = gxn * v - u1p / dt
+    b2 = gyn * v - u2p / dt + db2
     if F3 > 0.0:
-        A1 = table_compliance(app, tab.xi3_nodes, tab.A1_nodes)
-        A2 = table_compliance(app, tab.xi3_nodes, tab.A2_nodes)
-        sig = st[5]
-        guess = 2.0 * sig - st[6]
-        st[6] = sig
-        F1, F2, s1, s2, sig, it, nb, m = _point_contact(b1, b2, A1 / dt, A2 / dt, F3, tab.s_nodes, tab.mu_nodes,
-                                                        tab.slopes, p.eps, guess)
-        st[5] = sig
-        st[3] = A1 * F1
-        st[4] = A2 * F2
+        A1 = table_compliance(app, xi3_nodes, A1_nodes)
+        A2 = table_compliance(app, xi3_nodes, A2_nodes)
+        guess = 2.0 * sig - sig_old
+        sig_old = sig
+        F1, F2, s1, s2, sig, it, nb, m = _point_contact(b1, b2, A1 / dt, A2 / dt, F3, s_nodes, mu_nodes,
+                                                        slopes, eps, guess)
+        u1p = A1 * F1
+        u2p = A2 * F2
         counters[0] += it
         if it > counters[1]:
             counters[1] = it
         counters[2] += nb
-        state = 2.0 if m >= FULL_SLIP * tab.mu_nodes[tab.mu_nodes.shape[0] - 1] else 1.0
+        state = 2.0 if m >= FULL_SLIP * mu_top else 1.0
     else:
         F1 = 0.0
         F2 = 0.0
         F3 = 0.0
         s1 = b1
         s2 = b2
-        st[3] = 0.0
-        st[4] = 0.0
+        u1p = 0.0
+        u2p = 0.0
         state = 0.0
         counters[3] += 1
+    return F1, F2, F3, s1, s2, state, u1p, u2p, sig, sig_old
+
+
+@numba.njit(cache=True, inline="always")
+def _row(row, F1, F2, F3, s1, s2, xi2, xi3, state):
     row[0] = F1
     row[1] = F2
     row[2] = F3
     row[3] = s1
     row[4] = s2
     row[5] = xi2
-    row[6] = st[1]
+    row[6] = xi3
     row[7] = state
-    st[2] = xi2
-    return F1, F2, F3
 
 
 @numba.njit(cache=True)
@@ -153,19 +150,61 @@ def run_two_points(filt, r_aa, r_ab, r_ba, r_bb, pa, pb, tab_a, tab_b, rec_a, re
     LoopParams of the points (n_steps, dt, v of pa rule; the kick of each point is its own);
     tab_a, tab_b: PointTables; rec_a, rec_b: Records (written in place); win: Windows of the
     stop rule on the summed forces F2a + F2b, F3a + F3b.  Returns (steps done, stop reason)."""
-    sa = np.array([0.0, 0.0, 0.0, pa.u_ref[0], pa.u_ref[1], 0.0, 0.0])
-    sb = np.array([0.0, 0.0, 0.0, pb.u_ref[0], pb.u_ref[1], 0.0, 0.0])
+    dt = pa.dt
+    v = pa.v
+    ss_a = pa.slip_sign
+    ss_b = pb.slip_sign
+    eps_a = pa.eps
+    eps_b = pb.eps
+    xs_a = pa.xi3_static
+    xs_b = pb.xi3_static
+    gxa = pa.gx
+    gya = pa.gy
+    gxb = pb.gx
+    gyb = pb.gy
+    xa_n, qa_n, A1a, A2a, sa_n, mua, sla = tab_a
+    xb_n, qb_n, A1b, A2b, sb_n, mub, slb = tab_b
+    top_a = mua[mua.shape[0] - 1]
+    top_b = mub[mub.shape[0] - 1]
+    ca = rec_a.counters
+    cb = rec_b.counters
+    xi2a = 0.0
+    xi3a = 0.0
+    xi2a_old = 0.0
+    u1a = pa.u_ref[0]
+    u2a = pa.u_ref[1]
+    sga = 0.0
+    sga_old = 0.0
+    xi2b = 0.0
+    xi3b = 0.0
+    xi2b_old = 0.0
+    u1b = pb.u_ref[0]
+    u2b = pb.u_ref[1]
+    sgb = 0.0
+    sgb_old = 0.0
     row_a = np.zeros(8)
     row_b = np.zeros(8)
+    nga = gxa.shape[0]
+    nya = gya.shape[0]
+    ngb = gxb.shape[0]
+    nyb = gyb.shape[0]
     iw = 0
     jw = 0
     reason = 0
     done = 0
     for n in range(pa.n_steps):
-        F1a, F2a, F3a = contact_step(n, sa, pa, tab_a, rec_a.counters, row_a)
-        F1b, F2b, F3b = contact_step(n, sb, pb, tab_b, rec_b.counters, row_b)
+        F1a, F2a, F3a, s1a, s2a, sta, u1a, u2a, sga, sga_old = contact_step(
+            gxa[n if n < nga else nga - 1], gya[n if n < nya else nya - 1], v, dt, ss_a, eps_a, xs_a - xi3a,
+            ss_a * (xi2a - xi2a_old) / dt, u1a, u2a, sga, sga_old, xa_n, qa_n, A1a, A2a, sa_n, mua, sla, top_a, ca)
+        F1b, F2b, F3b, s1b, s2b, stb, u1b, u2b, sgb, sgb_old = contact_step(
+            gxb[n if n < ngb else ngb - 1], gyb[n if n < nyb else nyb - 1], v, dt, ss_b, eps_b, xs_b - xi3b,
+            ss_b * (xi2b - xi2b_old) / dt, u1b, u2b, sgb, sgb_old, xb_n, qb_n, A1b, A2b, sb_n, mub, slb, top_b, cb)
+        _row(row_a, F1a, F2a, F3a, s1a, s2a, xi2a, xi3a, sta)
+        _row(row_b, F1b, F2b, F3b, s1b, s2b, xi2b, xi3b, stb)
         store(n, row_a, rec_a)
         store(n, row_b, rec_b)
+        xi2a_old = xi2a
+        xi2b_old = xi2b
         d2a = F2a - pa.F_ref[1]
         d3a = F3a - pa.F_ref[2]
         d2b = F2b - pb.F_ref[1]
@@ -180,12 +219,12 @@ def run_two_points(filt, r_aa, r_ab, r_ba, r_bb, pa, pb, tab_a, tab_b, rec_a, re
         qa2, qa3 = partitioned_step(r_ab, d2b, d3b)
         rb2, rb3 = partitioned_step(r_ba, d2a, d3a)
         qb2, qb3 = partitioned_step(r_bb, d2b, d3b)
-        sa[0] = (ra2 + qa2) + w2a
-        sa[1] = (ra3 + qa3) + w3a
-        sb[0] = (qb2 + rb2) + w2b
-        sb[1] = (qb3 + rb3) + w3b
+        xi2a = (ra2 + qa2) + w2a
+        xi3a = (ra3 + qa3) + w3a
+        xi2b = (qb2 + rb2) + w2b
+        xi3b = (qb3 + rb3) + w3b
         if win.nw > 0:
-            jw, iw, reason = record_window(F2a + F2b, F3a + F3b, n + 1, pa.dt, win, jw, iw)
+            jw, iw, reason = record_window(F2a + F2b, F3a + F3b, n + 1, dt, win, jw, iw)
         done = n + 1
         if reason != 0:
             break
