@@ -31,6 +31,7 @@ from .config import ConfigError
 
 SAMPLE = 2.5e-5      # m: profile sampling of the turned profiles
 REACH = 0.012        # m: half-width of the turned profiles about the zone
+TRACK_FRAME_MAX = np.radians(15.0)   # angle = "none" with a second zone steeper than this: a one-line error
 
 
 @dataclass(frozen=True)
@@ -63,6 +64,11 @@ def second_zone(name: str, c: dict, geo) -> SecondZone:
     y2, e = float(rc.second[0]), float(rc.second[1])
     Y2 = y2 + rc.shift
     delta = float(np.arctan(geo.rail_track.slope(Y2)))
+    if abs(delta) > TRACK_FRAME_MAX and c["contact"].get("angle", "none") == "none":
+        raise ConfigError(str(paths.case_file(name)), detail=(
+            f"contact.points = 2: case '{name}': the second zone's contact angle is {np.degrees(delta):+.0f} deg "
+            f"(y^W = {1e3 * y2:+.2f} mm); its forces cannot be taken in the track's directions (contact.angle = "
+            f"\"none\", allowed up to {np.degrees(TRACK_FRAME_MAX):.0f} deg): set contact.angle = \"profiles\""))
     r_b = float(geo.r_wheel(y2))
     return SecondZone(y2, Y2, geo.rail_track.to_rail(Y2), delta, e, r_b, turned_geometry(geo, y2, Y2, delta, r_b))
 

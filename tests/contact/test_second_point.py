@@ -60,3 +60,6 @@ def test_points_two_errors():
     with pytest.raises(ConfigError) as e:
         second_zone("flange", {**c2, "contact": {**c2["contact"], "model": "kalker"}}, geo2)
     assert "contact.model" in str(e.value) and "\n" not in str(e.value)
+    with pytest.raises(ConfigError) as e:
+        second_zone("flange", {**c2, "contact": {**c2["contact"], "angle": "none"}}, geo2)
+    assert "contact.angle" in str(e.value) and "\n" not in str(e.value)
