@@ -82,9 +82,12 @@ Target (issue 26): two points under 2x the one-point time: **{'met' if worst < 2
 {worst:.2f}x). Without the rail (rigid) the two-point loop costs {no_rail:.2f}x the one-point loop (two contact solves,
 modal filters with two inputs and two outputs, two records); the rail adds {1e9 * rail_2 / n:.0f} ns per step against
 {1e9 * rail_1 / n:.0f} ns for one point ({rail_2 / rail_1:.1f}x): four kernel blocks of 4096 lags are four times the
-multiply-adds of the one-point convolution (the partitioned convolver's head and partitions; a two-level split of
-the cross blocks, short head partitions and long tail partitions, measured no faster on this machine). Meeting 2x
-needs fewer multiply-adds in the rail blocks (shorter cross kernels or a reduced wave model of the far field).
+multiply-adds of the one-point convolution (the partitioned convolver's head and partitions). Tried and measured no
+faster on this machine, so not kept: a two-level split of the extra blocks (short head partitions, long tail
+partitions), and one convolver for the three second-point blocks sharing the ring buffer and the FFTs and reading
+g_ab once for both directions (reciprocity), 5 % faster. Meeting 2x needs fewer multiply-adds in the rail blocks
+(shorter cross kernels, or a reduced wave model of the far field); the ratio also grows with the machine's load
+(the four blocks' spectra, 1 MB, compete for the cache).
 """
 
 
