@@ -67,7 +67,7 @@ def run() -> str:
 
 `solvers/timeloop/two_point.py`, `OMP_NUM_THREADS=1 .venv/bin/python -m benchmarks two_point --update`. 8 s of rolling
 at dt = 36 us ({n:,} steps), point-contact model with tables, no early stop, one core, after JIT warm-up; the
-three loops alternated three times in one run, the minimum of each. Structures: {src} ({len(wheel.f_r)} wheel modes,
+loops alternated three times in one run, the minimum of each. Structures: {src} ({len(wheel.f_r)} wheel modes,
 rail kernel {g.shape[0]} lags, partitioned convolution); the two-point loop convolves four rail blocks of that length
 (the 4 x 4 moving kernel) and runs the modal filters with inputs and outputs at both points. Contact:
 {'build/cases/default/contact.npz' if CONTACT.exists() else 'the Hertz stand-in'} at both points, mu = 0.35,
