@@ -37,6 +37,10 @@ def contact_setup(case: str) -> tuple[dict, dict, dict, object, dict]:
 
     rc = resolve_case(case)
     cfg = dict(rc.config, friction=rc.friction.config(), dy=DY)
+    if rc.case["contact"].get("points", 1) == 2:  # [contact] points = 2: the second zone must exist (one-line error)
+        from .second_point import second_zone
+
+        second_zone(case, rc.case, rc.geometry)
     return rc.case, rc.wheel, rc.rail, rc.geometry, cfg
 
 
@@ -110,7 +114,10 @@ def build_contact(c: dict, pw: dict, geo, n_table: int = 41, frictions=None, cur
     from solvers.contact.surfaces import patch_metrics
 
     E, nu = pw["material"]["E"], pw["material"]["nu"]
-    v, dt, F_L = c["kinematics"]["speed"], c["time"]["dt"], c["loading"]["preload"]
+    from .contact_plane import normal_preload
+
+    v, dt = c["kinematics"]["speed"], c["time"]["dt"]
+    F_L = normal_preload(c, geo)  # [contact] angle: the preload resolved in the contact plane
     dx = v * dt  # SPEC 4.1: the contact moves one element per step
     x, y, gap, A, B, xi_static, static = static_contact(geo, E, nu, F_L, dx)
     xi_nodes = np.linspace(0.0, 2.0 * xi_static, n_table)
@@ -132,7 +139,7 @@ def build_contact(c: dict, pw: dict, geo, n_table: int = 41, frictions=None, cur
         "curvature_rail": np.float64(geo.rail_track.curvature(rc.y_track)),
         "patch_area": np.float64(patch["area"]), "patch_length": np.float64(patch["length"]),
         "patch_width": np.float64(patch["width"]),
-        "xi3_static": np.float64(xi_static), "p3_static": static.p,
+        "xi3_static": np.float64(xi_static), "p3_static": static.p, "preload_normal": np.float64(F_L),
         "xi3_nodes": xi_nodes, "F3_nodes": table.F3, "q_nodes": table.q, "pressure_nodes": table.p,
         "table_error_xi3": err["xi3"], "table_error_F3": err["force"], "table_error_p": err["pressure"],
         "A1_nodes": A1_nodes, "A2_nodes": A2_nodes,
@@ -152,6 +159,10 @@ def run_contact(case: str) -> dict:
     cache = contact_curve_cache(case)
     try:
         arrays = build_contact(c, pw, geo, curve=cache)
+        if c["contact"].get("points", 1) == 2:  # [contact] points = 2: the second patch (pipeline/second_point.py)
+            from .second_point import second_contact_arrays
+
+            arrays.update(second_contact_arrays(case, c, pw, geo, float(arrays["preload_normal"])))
     except ConformalContact as e:                      # a contact of the case's input: one line, no traceback
         from .config import ConfigError
 

@@ -42,6 +42,7 @@ from solvers.constants import F_MAX_HZ
 
 from . import artifacts, paths
 from .atomic import save_figure
+from .contact_plane import case_projection
 
 log = logging.getLogger("pipeline.greens")
 
@@ -169,6 +170,11 @@ def run_greens(case: str) -> dict:
     t1 = time.perf_counter()
     rail, cached = rail_greens(pr, cfg["rail"], yr, v, dt)
     arrays.update(rail)
+    arrays = case_projection(case, arrays)  # [contact] angle: the contact plane's frame (pipeline/contact_plane.py)
+    if c["contact"].get("points", 1) == 2:  # [contact] points = 2: both points (pipeline/two_point_greens.py)
+        from .two_point_greens import second_greens
+
+        arrays.update(second_greens(case, pw, pr, modes, yr, dt, v))
     t2 = time.perf_counter()
     out = paths.case_dir(case)
     plot_kernels(arrays, out / "greens.png", case)

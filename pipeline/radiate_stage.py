@@ -144,6 +144,11 @@ def compute_radiation(case: str, model=None) -> tuple[dict, object, dict]:
     if F.ndim != 2 or F.shape[1] != 3 or len(t) != len(F) or len(t) < 16:
         raise artifacts.ArtifactError(paths.case_dir(case) / "simulate.npz",
                                       f"F_final {F.shape} / t_final {t.shape}: need (n, 3) and n >= 16 samples")
+    if "contact_angle_wheel" in sim and float(sim["contact_angle_wheel"]) != 0.0:
+        from solvers.contact_frame import to_structure  # forces in the contact plane -> the wheel's directions
+
+        F = F.copy()
+        F[:, 1], F[:, 2] = to_structure(F[:, 1], F[:, 2], float(sim["contact_angle_wheel"]))
     dt = float(np.median(np.diff(t)))
     t0 = time.perf_counter()
     res = sound_power_of_forces(model, F, dt)

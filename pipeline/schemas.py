@@ -139,6 +139,12 @@ CASE = {
                            "transient variational theory"),
         "normal": Field(str, choices=["table", "norm"], default="table",
                         doc="normal contact from a NORM table over the approach, or NORM every step"),
+        "angle": Field(str, choices=["none", "profiles"], default="none",
+                       doc="contact forces in the track's directions (the reference's choice) or in the contact "
+                           "plane of the profiles (normal tilted by the rigid contact's angle; solvers.contact_frame)"),
+        "points": Field(int, min=1, max=2, default=1,
+                        doc="contact points: 1, or 2 (the profiles' second contact zone, tread and flange or two "
+                            "tread zones, each with its own patch; solvers.timeloop.two_point)"),
     },
     "friction": friction_schema(),      # law (default "coulomb") and its parameters, or a preset
     "kinematics": {

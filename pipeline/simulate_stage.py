@@ -27,6 +27,13 @@ def simulate_config(case: str):
     return c, ccfg, gcfg, {"contact": ccfg, "greens": gcfg, "case": {k: v for k, v in c.items() if k != "listener"}}
 
 
+def case_preload(c: dict, con) -> float:
+    """The static normal force: the contact stage's (resolved in the contact plane, [contact] angle), or
+    the case's preload in a contact artifact without it."""
+    files = con.files if hasattr(con, "files") else con
+    return float(con["preload_normal"]) if "preload_normal" in files else c["loading"]["preload"]
+
+
 def run_simulate(case: str) -> dict:
     from solvers.interaction import WheelModes, contact_model, simulate
 
@@ -38,10 +45,14 @@ def run_simulate(case: str) -> dict:
     gr, _ = artifacts.load_npz(out / "greens.npz", "greens", gcfg, make_target=f"greens CASE={case}")
     wheel = WheelModes(gr["wheel_f"], gr["wheel_mass"], gr["wheel_zeta"], gr["wheel_phi"])
     cm = contact_model(con, case_friction(c, case))
+    if c["contact"].get("points", 1) == 2:  # [contact] points = 2: the two-point loop (pipeline/two_point_simulate.py)
+        from .two_point_simulate import simulate_two_point_case
+
+        return simulate_two_point_case(case, c, con, gr, cm, wheel, cfg)
     res = simulate(wheel, gr["rail_kernel"], cm, dt=c["time"]["dt"], v=c["kinematics"]["speed"],
                    gamma_y=c["kinematics"]["gamma_y"], gamma_x=c["kinematics"]["gamma_x"],
                    spin=c["kinematics"].get("spin", 0.0),
-                   preload=c["loading"]["preload"], duration=c["time"]["duration"],
+                   preload=case_preload(c, con), duration=c["time"]["duration"],
                    tangential=c["contact"]["model"], normal=c["contact"]["normal"], store_every=10)
     m = res.measures()
     arrays = {"t": res.t, "F": res.F, "slip": res.slip, "state": res.state, "t_final": res.t_final,
@@ -49,6 +60,8 @@ def run_simulate(case: str) -> dict:
               "L_F2": np.float64(m["L_F2"]), "f_dominant": np.float64(m["f_dominant"]),
               "stop_reason": np.array(res.stop_reason), "n_steps": np.int64(res.n_steps),
               "wall_s": np.float64(res.wall)}
+    if "contact_angle_wheel" in gr:  # forces in the contact plane ([contact] angle): its angle at the wheel
+        arrays["contact_angle_wheel"] = np.float64(gr["contact_angle_wheel"])
     plot_forces(res, m, out / "simulate.png", case)
     artifacts.save_npz(out / "simulate.npz", "simulate", cfg, **arrays)
     log.info("simulate %s: %d steps (%.2f s rolling, %s) in %.1f s; L_F2 = %.1f dB, dominant %.1f Hz -> %s",

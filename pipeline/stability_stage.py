@@ -28,7 +28,7 @@ def case_linear_model(case: str, mu: float | None = None, gamma_y: float | None 
     from solvers.interaction import WheelModes, contact_model
     from solvers.stability import linearise
 
-    from .simulate_stage import simulate_config
+    from .simulate_stage import case_preload, simulate_config
 
     c, ccfg, gcfg, _ = simulate_config(case)
     out = paths.case_dir(case)
@@ -47,7 +47,7 @@ def case_linear_model(case: str, mu: float | None = None, gamma_y: float | None 
         con = with_curves(case, con, [mu])
     gamma_y = c["kinematics"]["gamma_y"] if gamma_y is None else gamma_y
     lm = linearise(wheel, gr["rail_kernel"], contact_model(con, mu), dt=c["time"]["dt"],
-                   v=c["kinematics"]["speed"], gamma_y=gamma_y, preload=c["loading"]["preload"],
+                   v=c["kinematics"]["speed"], gamma_y=gamma_y, preload=case_preload(c, con),
                    gamma_x=c["kinematics"]["gamma_x"], spin=c["kinematics"].get("spin", 0.0))
     return c, lm, labels, np.asarray(gr["wheel_f"], float)
 
@@ -60,6 +60,10 @@ def run_stability(case: str) -> dict:
     t0 = time.perf_counter()
     c, lm, labels, f_open = case_linear_model(case)
     roots = screen(lm)
+    if c["contact"].get("points", 1) == 2:  # [contact] points = 2: the two-point screen (two_point_simulate.py)
+        from .two_point_simulate import case_two_point_roots
+
+        roots = case_two_point_roots(case)
     wall = time.perf_counter() - t0
     mode = np.array([r.mode for r in roots], np.int64)
     arrays = {"f_hz": np.array([r.f_hz for r in roots]), "sigma": np.array([r.sigma for r in roots]),
