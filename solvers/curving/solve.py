@@ -154,13 +154,17 @@ def _start(veh, trk, lam0, n_ws, y_f):
 
 def _starts(veh, trk, lam0, n_ws, y_f):
     """Starting points: pure rolling without flange contact; for the bogie also the leading
-    outer flange in contact with the frame at the chord position (a tight curve)."""
+    outer flange in contact with the frame at the chord position (a tight curve), and the
+    diagonal position (the trailing wheelset's inner flange in contact too: a very tight one)."""
     yield _start(veh, trk, lam0, n_ws, y_f), [0] * n_ws
     if n_ws == 2 and np.isfinite(y_f):
         a = veh.semi_wheelbase
         pb = 0.25 * y_f / a
         yield np.array([0.3, 1e3 * (a / trk.radius + pb), 0.0, 1.0, 1.0, 500 * y_f, 1e3 * (pb - a / trk.radius),
                         0.0, 1.0, 1.0, 750 * y_f, 1e3 * pb]), [1, 0]
+        pb = y_f / a  # very tight: the trailing wheelset against the inner rail
+        yield np.array([0.3, 1e3 * (a / trk.radius + pb), 0.0, 1.0, 1.0, 0.3, 1e3 * (pb - a / trk.radius),
+                        0.0, 1.0, 1.0, 0.0, 1e3 * pb]), [1, -1]
 
 
 def _safe(fun_of, flanges, y_f, prof, veh, trk, law):

@@ -134,7 +134,7 @@ def test_curving_validation_writeup():
             "pure lateral creepage, within 0.08 mu N with longitudinal creepage and a tread spin of 0.3 1/m "
             "(`tests/curving/test_creep.py`).", "", *rows, ""]
     # (4) residuals, sweep, shipped curves
-    series = {"c20_metro (BV50 worn)": _sweep("r150"), "y25_freight (60E1 new)": _sweep("y25_r300")}
+    series = {"c20_metro (BV50 worn)": _sweep("r150"), "y25_freight (BV50 new, 1:40 cone)": _sweep("y25_r300")}
     worst = max(max(s["res"]) for s in series.values())
     shipped = {n: solve_curve(n) for n in ("r150", "r300", "r100_cant", "y25_r300")}
     worst = max(worst, *(s.max_residual for s in shipped.values()))
