@@ -53,7 +53,7 @@ def _linear_case(kx, ky, radius):
                 c=0.0)
     assert abs(trk.unbalanced()[0]) < 1e-12
     law = CreepLaw(kind="linear", f11=f11, f22=f22)
-    sol = solve(prof, veh, dataclasses.replace(trk), law)
+    sol = solve(prof, veh, trk, law)
     p = rigid_contact(wheel, rail_t, 0.0)
     r_c, l0 = r0 + p.z_wheel, 0.75 + p.y_track
     ref = linear_bogie(a, radius, r_c, l0, lam, f11, f22, 2 * kx * 1.0 ** 2, 2 * ky)
