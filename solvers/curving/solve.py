@@ -1,5 +1,5 @@
 """Solving the steady-curving equations (``model``) of a free wheelset or of the leading bogie,
-with flange contact as a unilateral constraint (an active set, as in Elkins & Gostling 1977).
+with flange contact as a unilateral constraint (an active set).
 
 Unknowns, scaled to order one: the lateral shift y in mm (or, for a wheelset whose flange is
 in contact, the flange's normal force N_f in units of the static wheel load Q0, y being then
