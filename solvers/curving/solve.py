@@ -254,6 +254,12 @@ def solve(prof: Profiles, veh: Vehicle, trk: Track, law: CreepLaw, bogie: bool =
     if keep is None or not np.isfinite(res) or res > 1e-8:
         raise CurvingError(f"steady curving did not converge (largest residual {res:.2e} of the wheel load; "
                            f"R = {trk.radius:g} m, flange set {flanges})")
+    for k, ws in enumerate(keep[0], start=1):
+        for c in ws.contacts:
+            if c.N < 0.0:
+                raise CurvingError(f"wheel a{k}{'o' if c.side > 0 else 'i'}: its {c.point.zone} contact would pull "
+                                   f"({1e-3 * c.N:.1f} kN): the wheel lifts off it (flange climbing or wheel unloading), "
+                                   f"beyond the steady model (R = {trk.radius:g} m)")
     return CurvingSolution(keep[0], keep[1], keep[2], y_f, res, keep[3], passes)
 
 

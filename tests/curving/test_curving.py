@@ -105,3 +105,13 @@ def test_shipped_curves_are_in_equilibrium(name):
     Q = sum(w.wheel_load for w in s.wheels)
     assert Q == pytest.approx(4 * s.vehicle_model.wheel_load, rel=0.02)
 
+
+
+def test_traction_is_carried_by_the_creep_forces():
+    """A tractive force per axle: each wheelset's longitudinal creep forces add up to it (the axle
+    torque F r0 over rolling radii within 2 % of r0), and the equilibrium holds."""
+    veh, trk, prof, law = metro(300.0)
+    sol = solve(prof, veh, dataclasses.replace(trk, tractive_force=10e3), law)
+    assert sol.max_residual < RESIDUAL
+    for ws in sol.wheelsets:
+        assert sum(c.force_on_wheel()[0] for c in ws.contacts) == pytest.approx(10e3, rel=0.02)
