@@ -109,9 +109,11 @@ def test_shipped_curves_are_in_equilibrium(name):
 
 def test_traction_is_carried_by_the_creep_forces():
     """A tractive force per axle: each wheelset's longitudinal creep forces add up to it (the axle
-    torque F r0 over rolling radii within 2 % of r0), and the equilibrium holds."""
+    torque F r0 over the contacts' rolling radii: within 2 % on the trailing wheelset's treads,
+    5 % on the leading one, whose flange contact rolls on a 3 % larger radius)."""
     veh, trk, prof, law = metro(300.0)
     sol = solve(prof, veh, dataclasses.replace(trk, tractive_force=10e3), law)
     assert sol.max_residual < RESIDUAL
-    for ws in sol.wheelsets:
-        assert sum(c.force_on_wheel()[0] for c in ws.contacts) == pytest.approx(10e3, rel=0.02)
+    lead, trail = sol.wheelsets
+    assert sum(c.force_on_wheel()[0] for c in trail.contacts) == pytest.approx(10e3, rel=0.02)
+    assert sum(c.force_on_wheel()[0] for c in lead.contacts) == pytest.approx(10e3, rel=0.05)
