@@ -14,30 +14,32 @@ WHEELS = (("a1o", 0, +1), ("a1i", 0, -1), ("a2o", 1, +1), ("a2i", 1, -1))
 
 
 def _plan(ax, sol, veh, trk, scale):
-    """Plan view: the curve's rails, the frame and the wheelsets, lateral offsets and yaw angles
-    exaggerated by ``scale`` (relative to the local track)."""
+    """Plan view: the rails (straightened: positions are relative to the local track), the
+    frame's side members and the wheelsets with their contact points; lateral offsets from the
+    nominal positions and the yaw angles exaggerated by ``scale``."""
     R, a, b = trk.radius, veh.semi_wheelbase, trk.rail_centre
     x = np.linspace(-2.2 * a, 2.2 * a, 200)
     for side in (-1, 1):
-        ax.plot(x, side * b + 0 * x, color="0.3", lw=2)  # the rails, drawn straight: positions relative to the track
+        ax.plot(x, side * b + 0 * x, color="0.3", lw=2)
     ax.axhline(0.0, color="0.7", lw=0.8, ls=":")
-    # frame: y relative to the track at x is y_b + x psi_b + x^2 / (2R)
-    xf = np.array([-1.3 * a, 1.3 * a])
-    yf = sol.frame_y + xf * sol.frame_psi + xf ** 2 / (2 * R)
-    for off in (-0.9 * veh.box_half_spacing, 0.9 * veh.box_half_spacing):
-        ax.plot(xf, off + scale * yf, color="tab:blue", lw=1.5)
+    xf = np.linspace(-1.3 * a, 1.3 * a, 50)
+    yf = scale * (sol.frame_y + xf * sol.frame_psi + xf ** 2 / (2 * R))
+    for off in (-veh.box_half_spacing, veh.box_half_spacing):
+        ax.plot(xf, off + yf, color="tab:blue", lw=1.5)
     for ws in sol.wheelsets:
-        ang = scale * ws.psi  # heading outward: the axle turns from +y toward -x
-        ends = np.array([-1.0, 1.0]) * (b + 0.05)
-        ax.plot(ws.x - ends * math.sin(ang), scale * ws.y + ends * math.cos(ang), color="k", lw=2.5)
+        ang = scale * ws.psi  # + heading outward: the axle turns from +y toward -x
+        yc = scale * ws.y
+        ends = (np.array([-b - 0.08, b + 0.08]) - yc) / math.cos(ang)  # the axle reaches both rails
+        ax.plot(ws.x - ends * math.sin(ang), yc + ends * math.cos(ang), color="k", lw=2.5)
         for c in ws.contacts:
-            yc = scale * ws.y + c.side * c.l
-            ax.plot(ws.x - c.side * c.l * math.sin(ang), yc, "o" if c.point.zone == "tread" else "^",
+            yp = c.side * (b - 0.04 * (c.point.zone == "flange"))  # on its rail (the sections show where)
+            ax.plot(ws.x - (yp - yc) * math.tan(ang), yp, "o" if c.point.zone == "tread" else "^",
                     color="tab:red" if c.point.zone == "flange" else "tab:orange", ms=7)
     ax.annotate("travel", xy=(2.1 * a, 0), xytext=(1.4 * a, 0), arrowprops=dict(arrowstyle="->"), va="center")
     ax.set_xlabel("x along the track (m)")
     ax.set_ylabel("y toward the outer rail (m)")
-    ax.set_title(f"leading bogie, R = {R:g} m (shifts and yaw x{scale:g}; o tread, ^ flange contact)", fontsize=9)
+    ax.set_title(f"leading bogie, R = {R:g} m: rails (grey), frame (blue), wheelsets; offsets and yaw x{scale:g}; "
+                 "o tread, ^ flange contact", fontsize=9)
     ax.set_aspect("equal")
 
 
@@ -47,7 +49,8 @@ def _section(ax, prof, trk, veh, ws, side, name):
     yw = prof.wheel.y
     Y = prof.rail.y
     ax.plot(1e3 * Y, 1e3 * np.asarray(prof.rail(Y)), color="0.3", label="rail")
-    ax.plot(1e3 * (yw + shift), -1e3 * np.asarray(prof.wheel(yw)), color="k", label="wheel")
+    lift = next(c.point.sep for c in ws.contacts if c.side == side and c.point.zone == "tread")
+    ax.plot(1e3 * (yw + shift), -1e3 * (np.asarray(prof.wheel(yw)) + lift), color="k", label="wheel")
     for c in ws.contacts:
         if c.side == side:
             p = c.point

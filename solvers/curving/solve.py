@@ -1,5 +1,5 @@
 """Solving the steady-curving equations (``model``) of a free wheelset or of the leading bogie,
-with flange contact as a unilateral constraint (an active set, as in Elkins & Gostling 1977).
+with flange contact as a unilateral constraint (an active set).
 
 Unknowns, scaled to order one: the lateral shift y in mm (or, for a wheelset whose flange is
 in contact, the flange's normal force N_f in units of the static wheel load Q0, y being then
@@ -154,13 +154,17 @@ def _start(veh, trk, lam0, n_ws, y_f):
 
 def _starts(veh, trk, lam0, n_ws, y_f):
     """Starting points: pure rolling without flange contact; for the bogie also the leading
-    outer flange in contact with the frame at the chord position (a tight curve)."""
+    outer flange in contact with the frame at the chord position (a tight curve), and the
+    diagonal position (the trailing wheelset's inner flange in contact too: a very tight one)."""
     yield _start(veh, trk, lam0, n_ws, y_f), [0] * n_ws
     if n_ws == 2 and np.isfinite(y_f):
         a = veh.semi_wheelbase
         pb = 0.25 * y_f / a
         yield np.array([0.3, 1e3 * (a / trk.radius + pb), 0.0, 1.0, 1.0, 500 * y_f, 1e3 * (pb - a / trk.radius),
                         0.0, 1.0, 1.0, 750 * y_f, 1e3 * pb]), [1, 0]
+        pb = y_f / a  # very tight: the trailing wheelset against the inner rail
+        yield np.array([0.3, 1e3 * (a / trk.radius + pb), 0.0, 1.0, 1.0, 0.3, 1e3 * (pb - a / trk.radius),
+                        0.0, 1.0, 1.0, 0.0, 1e3 * pb]), [1, -1]
 
 
 def _safe(fun_of, flanges, y_f, prof, veh, trk, law):
@@ -250,6 +254,12 @@ def solve(prof: Profiles, veh: Vehicle, trk: Track, law: CreepLaw, bogie: bool =
     if keep is None or not np.isfinite(res) or res > 1e-8:
         raise CurvingError(f"steady curving did not converge (largest residual {res:.2e} of the wheel load; "
                            f"R = {trk.radius:g} m, flange set {flanges})")
+    for k, ws in enumerate(keep[0], start=1):
+        for c in ws.contacts:
+            if c.N < 0.0:
+                raise CurvingError(f"wheel a{k}{'o' if c.side > 0 else 'i'}: its {c.point.zone} contact would pull "
+                                   f"({1e-3 * c.N:.1f} kN): the wheel lifts off it (flange climbing or wheel unloading), "
+                                   f"beyond the steady model (R = {trk.radius:g} m)")
     return CurvingSolution(keep[0], keep[1], keep[2], y_f, res, keep[3], passes)
 
 

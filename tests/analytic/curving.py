@@ -2,7 +2,7 @@
 
 Linear steady curving of a two-axle bogie (Boocock, "Steady-state motion of railway vehicles
 on curved track", J. Mech. Eng. Sci. 11 (1969) 556-566; Wickens, *Fundamentals of Rail
-Vehicle Dynamics*, 2003, ch. 6, the bogie with shear and bending stiffness).  Assumptions of
+Vehicle Dynamics*, 2003, the steady curving of the bogie with shear and bending stiffness).  Assumptions of
 the theory: linear creep (F_x = f11 * creepage, F_y = f22 * creepage, no spin), conical
 wheels of conicity lam (no gravitational stiffness), equal wheel loads, no cant deficiency
 and no secondary yaw restraint.  Wheelsets at x = +a (leading) and -a on a rigid frame with,

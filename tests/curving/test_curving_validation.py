@@ -92,7 +92,7 @@ def test_curving_validation_writeup():
         rows.append(f"| {kx / 1e6:g}, {ky / 1e6:g} | {R:g} | {cell(L.psi, p1)} | {cell(L.y, y1)} | "
                     f"{cell(-T.psi, p1)} | {cell(sol.frame_psi, pb)} |")
     out += ["### (2) A bogie with elastic primary yaw against the linear closed form", "",
-            "Boocock (1969) and Wickens (2003, ch. 6): linear creep (f11 = 8 MN, f22 = 7 MN), conical wheels "
+            "Boocock (1969) and Wickens (2003, the steady curving of the bogie): linear creep (f11 = 8 MN, f22 = 7 MN), conical wheels "
             "(lam = 0.005 on a 300 mm round head: constant contact angle, no gravitational stiffness), balanced "
             "cant, a = 1.25 m, r0 = 0.45 m, per wheelset k_psi = 2 k_x b^2 and k_y = 2 k_y,box.  With "
             "psi_2 = -psi_1 and psi_b = 2 a f22 psi_1 / k_psi the six equations give",
@@ -113,7 +113,7 @@ def test_curving_validation_writeup():
             f"{math.degrees([c for c in L.contacts if c.point.zone == 'flange'][0].point.angle):.1f} deg), the "
             f"leading wheelset at the flange shift y_1 = {1e3 * sol.flange_shift:.2f} mm, the trailing one at "
             f"y_2 = {1e3 * T.y:+.2f} mm.  A rigid bogie's leading angle of attack is a/R plus the clearance term "
-            "(y_1 - y_2)/(2a) (the frame's chord geometry: e.g. Elkins & Gostling 1977; Wickens 2003 ch. 6):", "",
+            "(y_1 - y_2)/(2a): with a rigid frame y_i = y_b + x_i psi_b + x_i^2/(2R) and psi_i = psi_b + x_i/R, the flange-guided picture of curving that Boocock (1969) sets out from before his creep-guided theory:", "",
             "| | angle of attack (mrad) |", "|---|---|",
             f"| a/R | {1e3 * a / trk.radius:.3f} |",
             f"| a/R + (y_1 - y_2)/(2a) | {1e3 * geo:.3f} |",
@@ -134,7 +134,7 @@ def test_curving_validation_writeup():
             "pure lateral creepage, within 0.08 mu N with longitudinal creepage and a tread spin of 0.3 1/m "
             "(`tests/curving/test_creep.py`).", "", *rows, ""]
     # (4) residuals, sweep, shipped curves
-    series = {"c20_metro (BV50 worn)": _sweep("r150"), "y25_freight (60E1 new)": _sweep("y25_r300")}
+    series = {"c20_metro (BV50 worn)": _sweep("r150"), "y25_freight (BV50 new, 1:40 cone)": _sweep("y25_r300")}
     worst = max(max(s["res"]) for s in series.values())
     shipped = {n: solve_curve(n) for n in ("r150", "r300", "r100_cant", "y25_r300")}
     worst = max(worst, *(s.max_residual for s in shipped.values()))

@@ -70,3 +70,22 @@ def test_command_line_error_is_one_line(dirs):
                        capture_output=True, text=True)
     assert r.returncode == 2
     assert r.stderr.count("\n") == 1 and "no such vehicle 'nope'" in r.stderr and "Traceback" not in r.stderr
+
+
+def test_overrides_are_validated_and_change_the_curve():
+    c = curving.load_curve("r150", radius_m=300.0, mu=0.2)
+    assert c["radius_m"] == 300.0 and c["friction"]["mu"] == 0.2 and c["vehicle"] == "c20_metro"
+    with pytest.raises(ConfigError) as e:
+        curving.load_curve("r150", radius_m=3.0)
+    assert "radius_m = 3.0" in str(e.value) and "with radius_m = 3.0" in str(e.value)
+
+
+def test_case_fields_validate_as_a_case():
+    """A curve wheel's case-file keys plus name and time make a valid case (pipeline.schemas.CASE)."""
+    from pipeline.config import validate
+    from pipeline.schemas import CASE
+
+    w = curving.solve_curve("r150").wheels[1]
+    case = dict(w.case_fields(), name="r150/a1i", time={"dt": 36e-6, "duration": 1.0})
+    out = validate(case, CASE, "r150/a1i")
+    assert out["contact"]["dy_wr"] == pytest.approx(w.dy_wr) and out["kinematics"]["gamma_y"] < 0
