@@ -179,10 +179,12 @@ element at its own slip speed, peer `tang_falling`) against the regularized poin
 equivalent creepages, the law's global curve with its tail), each at most 8 s with the stage's early stop.
 Asserted for Coulomb friction and spin: the same dominant frequency (1 %), L_F2 within 3 dB, and the change
 from the Coulomb reference of the same sign in both loops; with the falling law: both loops squeal. With the
-falling law the two loops select different modes: in Kalker's loop the law acts element by element at the
-local slip speeds, which in transient rolling vary over the patch and along the cycle, while the point loop
-applies the global curve's slope at the global slip; the point loop's linear growth rates are checked by the
-screen (above), the nonlinear mode selection with a local falling law is the finer model's. (Wall times on the shared machine under load; Kalker's loop with a law runs
+falling law the largest peak of the force spectrum may sit at another mode in the two loops (see the
+table): in Kalker's loop the law acts element by element at the local slip speeds, which in transient
+rolling vary over the patch and along the cycle, while the point loop applies the global curve's slope at
+the global slip. The point loop's linear growth rates are checked by the screen (above); which mode a local
+falling law selects in the nonlinear limit cycle is not resolved here (Kalker's loop with a law runs TANG's
+Python step, minutes per case). (Wall times on the shared machine under load; Kalker's loop with a law runs
 TANG's Python step.)
 
 | variant | tangential contact | L_F2 (dB) | f dominant (Hz) | stop | wall |
