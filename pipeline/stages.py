@@ -48,7 +48,8 @@ STAGES: dict[str, Stage] = {
                     "listen.*", "listen_stage", "run_listen", "case", numba=True),
     "report": Stage("gather the case's results (wheel, rail, contact, Green's functions, interaction) -> "
                     "build/report/<case>/report.md", "report", "run_report", "case"),
-    "check": Stage("validate the configuration files only (no computation)", make=False),
+    "check": Stage("everything a later stage would refuse, before any work (files, friction, profiles, contact point, "
+                   "time step)", make=False),
     "study": Stage("a parameter study on Dask (SPEC 7): --study map|damping|contact -> build/studies/<study>/",
                    "study.stage", "run_study", "study", numba=True, make=False),
 }

@@ -127,3 +127,22 @@ def test_one_stage_table_for_the_command_line_and_make():
     r = subprocess.run([sys.base_prefix + "/bin/python3", "-I", "-S", "pipeline/deps.py", "--case",
                         "pipeline/cases/default.toml"], cwd=paths.ROOT, capture_output=True, text=True)
     assert r.returncode == 0 and r.stdout.split() == ["c20", "bv50"], r.stderr
+
+
+@pytest.mark.validation
+@pytest.mark.parametrize("case", ["dy30", "straight"])
+def test_off_list_contact_cases_run_end_to_end(case):
+    """A copy of the default case at dy_WR = -30 mm (y^R = +4.1 mm) and one on the straight-web
+    wheel (y^R = -5.2 mm): neither contact point is on the BV50 file's contact.y list; both run
+    `make radiate` with no file edited (the rail from the running surface's wave table).  Slow
+    (the surface table once, minutes; the straight wheel's modes)."""
+    import subprocess
+
+    import numpy as np
+
+    r = subprocess.run(["make", "--no-print-directory", "radiate", f"CASE={case}"], cwd=paths.ROOT,
+                       capture_output=True, text=True, timeout=3600)
+    assert r.returncode == 0, r.stderr[-2000:]
+    with np.load(paths.case_dir(case) / "greens.npz") as g, np.load(paths.case_dir(case) / "radiate.npz") as w:
+        assert abs(float(g["y_rail"]) - float(g["y_rail_contact"])) < 1e-12  # the point itself, not a node near it
+        assert float(w["L_F2"]) > 10.0 and np.isfinite(float(w["L_W"]))

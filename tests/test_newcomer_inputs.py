@@ -64,6 +64,30 @@ def test_friction_values_and_laws(tmp_path, friction, words):
         _refused(tmp_path, r, "f.toml", *words)
 
 
+def test_mu_033_reaches_the_time_loop(tmp_path):
+    """mu = 0.33 passed check and died in simulate (`no friction curve for mu = 0.33`, a traceback):
+    the contact stage now builds its curve, and simulate's selection (contact_model with the case's
+    resolved friction) finds it, plateau at 0.33."""
+    from pipeline.case import clear
+    from pipeline.friction import case_friction
+    from solvers.timeloop.inputs import contact_model
+
+    env = _case(tmp_path, "m33", DEFAULT.replace("\nmu = 0.35\n", "\nmu = 0.33\n"))
+    r = subprocess.run([sys.executable, "-m", "pipeline", "contact", "--case", "m33"], cwd=ROOT, env=env,
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    with np.load(tmp_path / "build" / "cases" / "m33" / "contact.npz") as d:
+        con = {k: d[k] for k in d.files}
+    assert list(con["rf_label"]) == ["coulomb(mu=0.33)"]
+    assert len(list((tmp_path / "build" / "cases" / "m33" / "friction").glob("*.npz"))) == 1
+    import tomllib
+
+    c = tomllib.loads((tmp_path / "cases" / "m33.toml").read_text())
+    cm = contact_model(con, case_friction(c, "m33"))
+    assert cm.mu == 0.33 and abs(cm.mu_nodes[-1] - 0.33) < 1e-4
+    clear()
+
+
 def test_presets_and_laws_resolve_to_the_registry():
     """A preset resolves to its law and parameters (the registry's), a law with defaults to its
     full parameter set: the curve's label is the registry's law's."""

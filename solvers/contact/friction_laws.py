@@ -315,3 +315,19 @@ def as_law(law_or_mu) -> FrictionLaw:
     if isinstance(law_or_mu, FrictionLaw):
         return law_or_mu
     return get_friction_law("coulomb", mu=float(law_or_mu))
+
+
+def from_table(table: dict) -> FrictionLaw:
+    """The law of a case file's ``[friction]`` table (BRIEF's interface): ``preset = "<name>"``
+    alone, or ``law = "<name>"`` (default "coulomb", then ``mu`` as before) with the law's
+    parameters as keys (names of LAWS).  Raises ValueError (one line) as get_friction_law."""
+    t = dict(table)
+    if "preset" in t:
+        key = t.pop("preset")
+        if t:
+            raise ValueError(f"[friction] preset = {key!r} stands alone; remove {', '.join(sorted(t))}")
+        return preset(key)
+    name = t.pop("law", "coulomb")
+    if not isinstance(name, str):
+        raise ValueError(f"[friction] law = {name!r} is not a name; known: {', '.join(sorted(LAWS))}")
+    return get_friction_law(name, **t)

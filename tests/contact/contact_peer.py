@@ -14,6 +14,8 @@ longitudinal CKSI = +c, each without spin and with CPHI = 6.25e-4 rad/mm (0.625 
 CONTACT's printed FX/FSTAT/FN, FY/FSTAT/FN, MZ [N mm] and the number of adhesion elements
 ('final element division: A') per case.
 
+Transient rolling (T=2) with the L4 law over 40 steps: see CONTACT_TRANSIENT below.
+
 Two patches (module 3, normal problem only, N=1, IPOTCN=3, IBASE=2): 44 x 64 elements of
 0.5 x 0.5 mm centred on the origin (XC1 = -10.75, YC1 = -15.75 mm), undeformed distance
 h = p(y) + x^2 / (2 RM) with the profile p(y) given at the element centres, two lobes
@@ -132,3 +134,53 @@ def patch_forces(geometry, F3):
     left = float(ns.p[Y < 0].sum() * d * d)
     right = float(ns.p[Y > 0].sum() * d * d)
     return left, right, int(ns.contact.sum()), float(xi)
+
+
+# ---------------------------------------------------------------------------------------------
+# transient rolling with falling friction
+# ---------------------------------------------------------------------------------------------
+
+# CONTACT module 3, transient rolling in contact-fixed coordinates (T=2), the creep cases' Hertzian
+# contact, grid, material and L4 law (FKIN 0.14, FEXP1 0.19, SABSH1 1250 mm/s, MEMDST 0), G=4 with
+# INISLP = 0 (the previous case's slip velocity), one case per time step DQ = dx = 0.4 mm: step 1
+# a new sequence (P=2: no previous tractions), steps 2-40 P=0; steps 1-20 CETA = -0.002, steps
+# 21-40 CKSI = 0.001, CETA = -0.006, CPHI = 6.25e-4 rad/mm.
+TRANSIENT_LAW = "L4 exponential"
+TRANSIENT_STEPS = 40
+
+
+def transient_kinematics(k):
+    """(gamma_x, gamma_y, spin [1/m]) of step k (0-based)."""
+    return (0.0, -0.002, 0.0) if k < 20 else (0.001, -0.006, SPIN)
+
+
+CONTACT_TRANSIENT = [
+    (0.0, 0.03366, 0.0, 1240), (0.0, 0.06649, -125.1, 1226), (0.0, 0.09846, -363.9, 1200), (0.0, 0.1296, -711.6, 1192), (0.0, 0.1598, -1170.0, 1174),
+    (0.0, 0.1894, -1740.0, 1164), (0.0, 0.218, -2389.0, 1138), (0.0, 0.2457, -3104.0, 1128), (0.0, 0.2726, -3905.0, 1118), (0.0, 0.2986, -4780.0, 1092),
+    (0.0, 0.3238, -5691.0, 1080), (0.0, 0.348, -6651.0, 1064), (0.0, 0.3714, -7660.0, 1048), (0.0, 0.3939, -8699.0, 1038), (0.0, 0.4155, -9740.0, 1018),
+    (0.0, 0.4362, -10810.0, 1000), (0.0, 0.456, -11890.0, 992), (0.0, 0.4748, -12930.0, 972), (0.0, 0.4928, -13980.0, 958), (0.0, 0.5098, -15010.0, 940),
+    (-0.01466, 0.5654, -21310.0, 841), (-0.02825, 0.6108, -25970.0, 756), (-0.04077, 0.6458, -29060.0, 669), (-0.05228, 0.6716, -30940.0, 597), (-0.06282, 0.689, -31890.0, 535),
+    (-0.07255, 0.7015, -32470.0, 485), (-0.0816, 0.7108, -32860.0, 448), (-0.08999, 0.7172, -33070.0, 416), (-0.09779, 0.7217, -33210.0, 392), (-0.1051, 0.7247, -33260.0, 375),
+    (-0.1119, 0.7268, -33280.0, 357), (-0.1182, 0.7278, -33240.0, 346), (-0.1242, 0.7288, -33220.0, 338), (-0.1298, 0.7292, -33160.0, 329), (-0.135, 0.7296, -33100.0, 324),
+    (-0.14, 0.73, -33040.0, 321), (-0.1447, 0.7305, -32980.0, 321), (-0.1491, 0.7312, -32920.0, 321), (-0.1532, 0.7318, -32850.0, 318), (-0.1571, 0.7323, -32790.0, 316),
+]
+
+
+def transient_run(law_or_mu, contact=None):
+    """The project's transient TANG over CONTACT's 40 steps: array (40, 4) as creep_curves (forces
+    normalised by the law's mu(0) FN)."""
+    from solvers.contact.tang import tang_transient
+
+    X, Y, ns = contact or hertz_contact()
+    law = law_or_mu
+    if isinstance(law_or_mu, str):
+        law = get_friction_law(LAWS[law_or_mu][0], **LAWS[law_or_mu][1])
+    scale = (law if isinstance(law, float) else law.mu_static) * ns.F3
+    st, out = None, []
+    for k in range(TRANSIENT_STEPS):
+        gx, gy, sp = transient_kinematics(k)
+        st = tang_transient(ns.p, DX, DY, V, law, gamma_x=gx, gamma_y=gy, spin=sp, state=st, E=E28, nu=NU28)
+        assert st.converged
+        mz = float((X * st.p2 - Y * st.p1).sum() * DX * DY * 1e3)
+        out.append((st.F1 / scale, st.F2 / scale, mz, int(st.stick.sum())))
+    return np.array(out)

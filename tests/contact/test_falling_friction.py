@@ -3,7 +3,8 @@ its printed numbers and every input in tests/contact/contact_peer.py): force vs 
 lateral and longitudinal, with and without spin, on a Hertzian contact, for CONTACT's
 exponential (L=4), rational (L=3) and linear (L=2) falling laws.  The project's steady TANG
 with the local coefficient mu(|s|) (solvers.contact.tang_falling) agrees within 0.5 %.
-The validation test writes docs/validation/33_contact_peer.md (with the two-patch
+Transient rolling with the law against CONTACT step by step.  The validation test writes
+docs/validation/33_contact_peer.md (with the two-patch
 comparison of test_two_patch.py)."""
 import time
 from pathlib import Path
@@ -11,8 +12,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from tests.contact.contact_peer import (CONTACT_CREEP, CONTACT_TWO_PATCH, CREEP, GEOMETRIES, LAWS, SETS,
-                                        creep_curves, hertz_contact, patch_forces)
+from tests.contact.contact_peer import (CONTACT_CREEP, CONTACT_TRANSIENT, CONTACT_TWO_PATCH, CREEP, GEOMETRIES, LAWS,
+                                        SETS, TRANSIENT_LAW, creep_curves, hertz_contact, patch_forces,
+                                        transient_run)
 
 DOCS = Path(__file__).resolve().parents[2] / "docs" / "validation"
 
@@ -47,6 +49,19 @@ def test_creep_curves_match_contact(contact, name):
     for k in range(0, len(ref), len(CREEP)):
         mag = np.hypot(ours[k:k + len(CREEP), 0], ours[k:k + len(CREEP), 1])
         assert mag[-1] < 0.85 * mag.max()
+
+
+def test_transient_rolling_matches_contact(contact):
+    # transient TANG with the law, step by step, against CONTACT's transient run (T=2)
+    ours = transient_run(TRANSIENT_LAW, contact)
+    ref = np.array(CONTACT_TRANSIENT)
+    force = np.abs(ours[:, :2] - ref[:, :2]).max(axis=1) / np.hypot(ref[:, 0], ref[:, 1])
+    assert force.max() < 5e-3 and force.max() < 1e-3
+    assert np.abs(ours[:, 3] - ref[:, 3]).max() <= 2
+    assert np.abs(ours[:, 2] - ref[:, 2]).max() < 5e-3 * np.abs(ref[:, 2]).max()
+    # the law matters here: Coulomb friction at the static coefficient misses CONTACT by more
+    coulomb = transient_run(0.33, contact)
+    assert np.abs(coulomb[:, :2] - ref[:, :2]).max(axis=1).max() / np.hypot(*ref[-1, :2]) > 0.01
 
 
 @pytest.mark.validation
@@ -98,6 +113,26 @@ def test_contact_peer_report(contact):
     axes[0].legend(fontsize=6)
     fig.tight_layout()
     fig.savefig(DOCS / "contact_peer_creep.png", dpi=90)
+    plt.close(fig)
+
+    tr = transient_run(TRANSIENT_LAW, contact)
+    tr_c = transient_run(0.33, contact)
+    tr_ref = np.array(CONTACT_TRANSIENT)
+    tr_dev = np.abs(tr[:, :2] - tr_ref[:, :2]).max(axis=1) / np.hypot(tr_ref[:, 0], tr_ref[:, 1])
+    tr_cdev = np.abs(tr_c[:, :2] - tr_ref[:, :2]).max(axis=1) / np.hypot(tr_ref[:, 0], tr_ref[:, 1])
+    assert tr_dev.max() < 5e-3
+    fig, ax = plt.subplots(figsize=(7, 3.4))
+    steps = np.arange(1, len(tr) + 1)
+    for comp, sign, col, lab in ((1, 1.0, "C0", "FY"), (0, -1.0, "C3", "-FX")):
+        ax.plot(steps, sign * tr[:, comp], "-", color=col, label=f"{lab}, TANG with the law")
+        ax.plot(steps, sign * tr_ref[:, comp], "o", mfc="none", color=col, label=f"{lab}, CONTACT")
+        ax.plot(steps, sign * tr_c[:, comp], ":", color=col, label=f"{lab}, TANG Coulomb mu = 0.33")
+    ax.set_xlabel("time step (dx = 0.4 mm)")
+    ax.set_ylabel("F / (f_stat F_N)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=6)
+    fig.tight_layout()
+    fig.savefig(DOCS / "contact_peer_transient.png", dpi=90)
     plt.close(fig)
 
     patch_rows = []
@@ -164,6 +199,18 @@ is to CONTACT's printed digits (4): the two codes solve the same discrete proble
 influence coefficients, rigid slip at x + dx/6, the same fixed point of the slip-velocity iteration).
 
 ![creep curves, TANG (lines) and CONTACT (circles)](validation/contact_peer_creep.png)
+
+### Transient rolling with falling friction
+
+CONTACT's transient rolling in contact-fixed coordinates (T=2) on the same contact, grid and L4 law, one case
+per time step (DQ = dx = 0.4 mm), the slip velocity of the previous case as the start (INISLP = 0): step 1
+from no previous tractions (P=2), steps 1-20 CETA = -0.002, steps 21-40 CKSI = 0.001, CETA = -0.006 and
+spin CPHI = 6.25e-4 rad/mm.  The project: `tang_transient(..., law, state=...)` (the bounds iterated per
+step, `tang_falling.transient_falling`).  Largest force deviation over the 40 steps {100 * tr_dev.max():.3f} %
+(adhesion elements within {int(np.abs(tr[:, 3] - tr_ref[:, 3]).max())}); Coulomb friction at the static
+coefficient 0.33 instead of the law misses CONTACT by up to {100 * tr_cdev.max():.1f} %.
+
+![transient rolling, TANG with the law (lines), CONTACT (circles), Coulomb (dotted)](validation/contact_peer_transient.png)
 
 ### Two patches on one grid (static normal problem)
 

@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from solvers.contact.friction_laws import (LAWS, PRESETS, FrictionLaw, as_law, dmu_of, get_friction_law,
-                                           mu_of, preset)
+from solvers.contact.friction_laws import (LAWS, PRESETS, FrictionLaw, as_law, dmu_of, from_table,
+                                           get_friction_law, mu_of, preset)
 
 S = np.array([0.0, 0.01, 0.2, 0.5, 1.0, 2.5, 7.0])      # slip speeds [m/s]
 
@@ -116,3 +116,13 @@ def test_out_of_range_parameter_named():
 def test_presets_by_name():
     assert get_friction_law("hpf") == preset("hpf")
     assert isinstance(preset("polach_dry"), FrictionLaw)
+
+
+def test_case_file_table():
+    assert from_table({"mu": 0.3}) == get_friction_law("coulomb", mu=0.3)
+    assert from_table({"law": "polach", "mu0": 0.5, "A": 0.4, "B": 0.6}).code == 5
+    assert from_table({"preset": "hpf"}) == preset("hpf")
+    with pytest.raises(ValueError, match=r"preset = 'hpf' stands alone; remove mu"):
+        from_table({"preset": "hpf", "mu": 0.3})
+    with pytest.raises(ValueError, match=r"'coulomb': missing parameter 'mu'"):
+        from_table({})
