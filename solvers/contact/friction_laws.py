@@ -22,8 +22,9 @@ SI (m/s).  A negative flin/frat/fexp term gives a rising ("positive") friction
 characteristic, as friction modifiers show; mu stays positive and at most MU_MAX.
 
 CONTACT applies the falling laws through a friction memory (relaxation over a sliding
-distance MEMDST, user guide "Friction memory"); MEMDST = 0 is the instantaneous law used
-here (steady rolling: the local coefficient at the local slip speed).
+distance MEMDST, user guide "Friction memory"): the optional parameters memdst [mm] (default 0:
+the instantaneous law) and mem_s0 [mm/s] (default 10, CONTACT's) of every law but coulomb; steady
+TANG applies it (``tang_falling``), the global curves' point contact does not need it.
 """
 from __future__ import annotations
 
@@ -84,12 +85,18 @@ _CONTACT_UG = ("E.A.H. Vollebregt, User guide for CONTACT, Vtech CMCC (github.co
                "versus creep-force curves with CONTACT, Wear 314 (2014) 87-95")
 
 
+_MEMORY = (Param("memdst", "mm", 0.0, 1e3, False, False, "friction memory: characteristic sliding distance d_c "
+                 "(CONTACT's MEMDST; 0: the instantaneous law; steady TANG only)", 0.0),
+           Param("mem_s0", "mm/s", 0.0, 1e6, True, False, "friction memory: minimum velocity s_0 (CONTACT's MEM_S0)",
+                 10.0))
+
+
 def _two_terms(prefix, what):
     return (_FKIN,
             _coef(f"{prefix}1", f"size of the first {what} term (negative: rising friction)"),
             _sabsh("sabsh1", "slip speed at which the first term is halved"),
             _coef(f"{prefix}2", f"size of the second {what} term (default 0: off)"),
-            _sabsh("sabsh2", "slip speed at which the second term is halved", 10000.0))
+            _sabsh("sabsh2", "slip speed at which the second term is halved", 10000.0)) + _MEMORY
 
 
 LAWS: dict[str, Law] = {
@@ -109,11 +116,11 @@ LAWS: dict[str, Law] = {
     "polach": Law("polach", POLACH,
                   (Param("mu0", "-", 0.0, MU_MAX, True, False, "maximum (static) coefficient, at s = 0"),
                    Param("A", "-", 0.0, 1.0, True, False, "ratio of the limit at infinite slip speed to mu0"),
-                   Param("B", "s/m", 0.0, 1e3, False, False, "coefficient of the exponential decrease")),
+                   Param("B", "s/m", 0.0, 1e3, False, False, "coefficient of the exponential decrease")) + _MEMORY,
                   "mu(s) = mu0 ((1 - A) exp(-B s) + A)",
                   "Polach's exponential falling law (CONTACT L=5 converts it to L=4)",
                   "O. Polach, Creep forces in simulations of traction vehicles running on adhesion limit, "
-                  "Wear 258 (2005) 992-1000, eq. (13); CONTACT user guide eq. polach_law"),
+                  "Wear 258 (2005) 992-1000; CONTACT user guide eq. polach_law"),
 }
 
 
@@ -171,8 +178,8 @@ def mu_of(code, array, s):
 
 @numba.njit(cache=True)
 def dmu_of(code, array, s):
-    """d mu / d|s| [s/m] at slip speed |s| (the linear law: the slope left of its kink
-    at s = 2 sabsh, 0 beyond)."""
+    """d mu / d|s| [s/m] at slip speed |s| (the linear law: its slope below the kink at
+    s = 2 sabsh, 0 from there on)."""
     s = abs(s)
     if code == 0:
         return 0.0
@@ -206,12 +213,15 @@ def _map(fun_code, code, array, s):
 
 
 def _si_array(code, p):
+    """The numba form in SI: the law's coefficients, then (not coulomb) memdst [m], mem_s0 [m/s]."""
     if code == COULOMB:
         return np.array([p["mu"]])
+    memory = [1e-3 * p["memdst"], 1e-3 * p["mem_s0"]]
     if code in (LINEAR, RATIONAL, EXPONENTIAL):
         prefix = {LINEAR: "flin", RATIONAL: "frat", EXPONENTIAL: "fexp"}[code]
-        return np.array([p["fkin"], p[prefix + "1"], 1e-3 * p["sabsh1"], p[prefix + "2"], 1e-3 * p["sabsh2"]])
-    return np.array([p["mu0"], p["A"], p["B"]])
+        return np.array([p["fkin"], p[prefix + "1"], 1e-3 * p["sabsh1"], p[prefix + "2"], 1e-3 * p["sabsh2"]]
+                        + memory)
+    return np.array([p["mu0"], p["A"], p["B"]] + memory)
 
 
 class FrictionLaw:
@@ -240,6 +250,13 @@ class FrictionLaw:
         return float(mu_of(self.code, self.array, 0.0))
 
     @property
+    def memory(self) -> tuple[float, float]:
+        """CONTACT's friction memory (d_c [m], s_0 [m/s]); d_c = 0: the instantaneous law."""
+        if self.code == COULOMB:
+            return 0.0, 0.0
+        return float(self.array[-2]), float(self.array[-1])
+
+    @property
     def is_coulomb(self) -> bool:
         return self.code == COULOMB
 
@@ -258,7 +275,7 @@ def _bounds(law: Law, p: dict):
     between them, so mu(s) does too)."""
     if law.code == COULOMB:
         return
-    terms = [p[k] for k in p if k[:4] in ("flin", "frat", "fexp")]
+    terms = [p[k] for k in p if k[:4] in ("flin", "frat", "fexp") and k[-1] in "12"]
     first = p["mu0"] if law.code == POLACH else p["fkin"] + sum(terms)
     if not 0.0 < first <= MU_MAX:
         raise ValueError(f"friction law '{law.name}': mu(0) = {first:g} out of range 0 < mu <= {MU_MAX:g}")

@@ -125,6 +125,9 @@ def tang_transient(p3, dx, dy, v, mu, gamma_x=0.0, gamma_y=0.0, spin=0.0, *,
     ``FrictionLaw``: the local coefficient mu(|s|) at each element's slip speed of this step
     (instantaneous, CONTACT's MEMDST = 0; ``tang_falling.transient_falling``)."""
     mu, law = _coefficient(mu)
+    if law is not None and law.memory[0] > 0.0:
+        raise ValueError(f"tang_transient: friction law '{law.name}' with memdst = {law.params['memdst']:g} mm: "
+                         "transient TANG takes the instantaneous law (memdst = 0); tang_steady takes the memory")
     return solve_rolling(p3, Rolling(dx, dy, v, mu, gamma_x, gamma_y, spin), False, state, TangOptions(**options),
                          law)
 

@@ -14,9 +14,15 @@ point every slip element carries |p| = mu(|s|) p3 opposite to its slip and every
 follows CONTACT's INISLP = 0 (the previous case's slip, here a warm start's; without one the
 slip is approximated from below, all elements at mu(0), INISLP > 0).  Where the fixed-point map
 does not contract (a steep falling branch), the update of the bounds is relaxed (CONTACT's
-OMGSLP; here halved whenever the change grows).  The friction memory of CONTACT (MEMDST) is
-not modelled: MEMDST = 0, the instantaneous law (in transient rolling CONTACT's user guide warns
-that it changes mu abruptly where an element enters the slip area; steady state is unaffected, and
+OMGSLP; here halved whenever the change grows).  With the law's friction memory (memdst =
+d_c > 0, CONTACT's MEMDST; user guide 'Friction memory', eq. dmu_dt) steady TANG uses CONTACT's
+steady form of mu' = -max(|s|, s_0)/d_c (mu - mu_s(|s|)): along each grid line from the leading
+edge (mu = mu(0) there), mu_I = theta mu_(I+dx) + (1 - theta) mu_s(|s_I|), theta = d_c / (d_c +
+dt max(|s_I|, s_0)) (m_stang.f90).  Without it (d_c = 0) the coefficient jumps where an element
+enters the slip area; for very steep laws (mu falling by much of itself within a slip speed
+comparable to the rigid slip) the iteration may then not converge (RuntimeWarning, as CONTACT's
+MAXIN stop; the discrete problem can have several solutions, Vollebregt and Schuttelaars, JSV 331,
+2012), and the memory regularises it.  Transient TANG takes d_c = 0 only (the instantaneous law;
 transient rolling at constant creepage settles on the steady solution, tests/contact/test_tang_law.py).
 
 Stops when the largest change of the bounds is below ``TOL_MU`` times the largest bound (and the
@@ -50,6 +56,36 @@ def slip_speed(res: CoulombResult, dt: float) -> np.ndarray:
     return v
 
 
+def coefficients(law: FrictionLaw, speed, ix, iy, dt) -> np.ndarray:
+    """mu per element (ix, iy) at slip speeds `speed` [m/s]: the law's mu_s(|s|), or with its
+    friction memory (d_c > 0) the steady relaxation along x from the leading edge (module notes)."""
+    mus = law.mu(speed)
+    d_c, s_0 = law.memory
+    if d_c <= 0.0:
+        return mus
+    nx, ny = int(ix.max()) + 1, int(iy.max()) + 1
+    mu0 = law.mu_static
+    MS, SV = np.full((nx, ny), mu0), np.zeros((nx, ny))
+    MS[ix, iy], SV[ix, iy] = mus, speed
+    theta = d_c / (d_c + dt * np.maximum(SV, s_0))
+    M = np.empty((nx, ny))
+    prev = np.full(ny, mu0)
+    for i in range(nx - 1, -1, -1):          # the leading edge is at high x
+        prev = theta[i] * prev + (1.0 - theta[i]) * MS[i]
+        M[i] = prev
+    return M[ix, iy]
+
+
+def _relaxation(omega, change, last):
+    """The update's relaxation (CONTACT's OMGSLP, reduced where elements alternate): halved when
+    the bounds' change grew by half (an oscillation), grown back towards 1 while it contracts."""
+    if change > 1.5 * last:
+        return max(0.5 * omega, 1.0 / 64.0)
+    if change < 0.5 * last:
+        return min(1.0, 1.5 * omega)
+    return omega
+
+
 def solve_falling(op: TangentialOperator, ix, iy, r, p3, law: FrictionLaw, dt, p, stick, *, speed=None,
                   tol=1e-8, warm=False) -> FallingResult:
     """Steady TANG with the local coefficient mu(|s|) of `law` on the contact elements (ix,
@@ -58,7 +94,7 @@ def solve_falling(op: TangentialOperator, ix, iy, r, p3, law: FrictionLaw, dt, p
     ``solve_coulomb``)."""
     p3 = np.asarray(p3, dtype=float)
     sv = np.zeros(p3.shape) if speed is None else np.asarray(speed, dtype=float)
-    g = law.mu(sv) * p3
+    g = coefficients(law, sv, ix, iy, dt) * p3
     omega, last, level = 1.0, np.inf, float(g.max(initial=0.0))
     total_newton = total_krylov = 0
     res = None
@@ -69,14 +105,13 @@ def solve_falling(op: TangentialOperator, ix, iy, r, p3, law: FrictionLaw, dt, p
         res = solve_coulomb(op, ix, iy, r, g, p, stick, tol=tol_k, warm=warm or outer > 1)
         total_newton += res.newton
         total_krylov += res.krylov
-        g_new = law.mu(slip_speed(res, dt)) * p3
+        g_new = coefficients(law, slip_speed(res, dt), ix, iy, dt) * p3
         change = float(np.abs(g_new - g).max(initial=0.0))
         level = float(g.max(initial=0.0))
         if change <= TOL_MU * level and res.converged and tol_k <= tol:
             converged = True
             break
-        if change > last:           # not contracting: relax the bounds' update (CONTACT's OMGSLP)
-            omega = max(0.5 * omega, 1.0 / 64.0)
+        omega = _relaxation(omega, change, last)
         last = change
         g = g + omega * (g_new - g)
         p, stick = res.p, res.stick
@@ -108,8 +143,7 @@ def transient_falling(step, law: FrictionLaw, p3, ix, iy, speed=None):
         if change <= TOL_MU * float(g.max(initial=0.0)):
             converged = bool(out[10])
             break
-        if change > last:
-            omega = max(0.5 * omega, 1.0 / 64.0)
+        omega = _relaxation(omega, change, last)
         last = change
         g = g + omega * (g_new - g)
     return out[:8] + (newton, krylov, converged) + out[11:]

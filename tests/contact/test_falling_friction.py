@@ -42,7 +42,7 @@ def test_creep_curves_match_contact(contact, name):
     ref = np.array(CONTACT_CREEP[name])
     force, mz = deviations(ours, ref)
     assert force.max() < 5e-3                       # done-when: within 0.5 %
-    assert force.max() < 1e-3                       # as measured (CONTACT prints 4 digits)
+    assert force.max() < 2.5e-3                     # as measured: <= 0.04 %, 0.2 % for the steep law
     assert mz[np.abs(ref[:, 2]) > 0].max() < 5e-3
     assert np.abs(ours[:, 3] - ref[:, 3]).max() <= 2     # adhesion elements
     # the curves fall: beyond the peak the force decreases with creepage (all laws, all sets)
@@ -88,7 +88,7 @@ def test_contact_peer_report(contact):
         force, mz = deviations(ours, ref)
         assert force.max() < 5e-3
         res[name] = ours
-        for s, (label, *_ ) in enumerate(SETS):
+        for s, (label, *_) in enumerate(SETS):
             sl = slice(s * len(CREEP), (s + 1) * len(CREEP))
             mag = np.hypot(ref[sl, 0], ref[sl, 1])
             rows.append(f"| {name} | {label} | {mag.max():.4f} at {CREEP[int(np.argmax(mag))]:g} | {mag[-1]:.4f} | "
@@ -100,7 +100,7 @@ def test_contact_peer_report(contact):
     for s, (label, ix, iy, _) in enumerate(SETS):
         ax = axes[s]
         sl = slice(s * len(CREEP), (s + 1) * len(CREEP))
-        for (name, ours), col in zip(res.items(), ("C0", "C1", "C2")):
+        for (name, ours), col in zip(res.items(), ("C0", "C1", "C2", "C3", "C4")):
             ref = np.array(CONTACT_CREEP[name])
             comp = 0 if ix else 1
             sign = -1.0 if ix else 1.0
@@ -175,9 +175,10 @@ repository (its code is not part of the project); its printed results and every 
 
 Inputs (CONTACT module 3, T=3, N=1, IPOTCN=-3): semi-axes 8 x 4 mm (curvatures 0.8464e-3 and 2.406e-3 /mm),
 FN = 82 kN, G = 82 GPa and nu = 0.28 for both bodies, 44 x 44 elements over 1.1 times the ellipse (dx = 0.4 mm,
-dy = 0.2 mm), rolling step DQ = 0.4 mm, VELOC = 30 m/s.  Laws (CONTACT's names, SABSH in mm/s): {laws}.  No
-friction memory (MEMDST = 0: the instantaneous law), slip velocity approximated from below (INISLP = 1), every
-case from scratch.  Creepages {", ".join(f"{c:g}" for c in CREEP)}: lateral CETA = -c, longitudinal CKSI = +c,
+dy = 0.2 mm), rolling step DQ = 0.4 mm, VELOC = 30 m/s.  Laws (CONTACT's names, SABSH in mm/s, MEMDST in mm,
+MEM_S0 in mm/s): {laws}.  Without a MEMDST the law is instantaneous (MEMDST = 0); the last two sets use CONTACT's
+friction memory (MEMDST = 0.003 mm, its tractcurv example's value); slip velocity approximated from below
+(INISLP = 1), every case from scratch.  Creepages {", ".join(f"{c:g}" for c in CREEP)}: lateral CETA = -c, longitudinal CKSI = +c,
 without spin and with spin CPHI = 6.25e-4 rad/mm.  The project: NORM for FN on the same grid, then steady TANG
 with the local coefficient mu(|s|) at each element's slip speed (`solvers.contact.tang_falling`: CONTACT's
 slip-velocity iteration, User guide for CONTACT, 'The slip velocity iteration', around Kalker's active-set
@@ -196,7 +197,12 @@ The curves rise to a peak below the static coefficient (the stick zone vanishes 
 patch already has a lower coefficient) and fall with the slip speed along the law; spin shifts the lateral
 curve (negative lateral force at small creepage) and adds a lateral force to the longitudinal one.  Agreement
 is to CONTACT's printed digits (4): the two codes solve the same discrete problem (piecewise-constant
-influence coefficients, rigid slip at x + dx/6, the same fixed point of the slip-velocity iteration).
+influence coefficients, rigid slip at x + dx/6, the same fixed point of the slip-velocity iteration).  The
+steep law (mu from 0.35 to 0.1, halved every 20 mm/s of slip: its fall lies within the micro-slip range) differs
+most, 0.2 % at the smallest creepage with spin, where CONTACT's stop of the slip-velocity iteration (the rms
+change of the slip velocity below 0.001 of its rms) is the looser of the two; without the memory this law's
+iteration does not converge at small creepage (the coefficient jumps where an element enters the slip area),
+the case CONTACT's friction memory is made for.
 
 ![creep curves, TANG (lines) and CONTACT (circles)](validation/contact_peer_creep.png)
 

@@ -45,7 +45,9 @@ def test_exponential_law_halves_at_sabsh():
     np.testing.assert_allclose(law.mu(S), 0.14 + 0.19 * np.exp(-math.log(2) * S / 1.25), rtol=1e-14)
     np.testing.assert_allclose(law.dmu(S), -0.19 * math.log(2) / 1.25 * np.exp(-math.log(2) * S / 1.25),
                                rtol=1e-13)
-    assert law.params == {"fkin": 0.14, "fexp1": 0.19, "sabsh1": 1250.0, "fexp2": 0.0, "sabsh2": 10000.0}
+    assert law.params == {"fkin": 0.14, "fexp1": 0.19, "sabsh1": 1250.0, "fexp2": 0.0, "sabsh2": 10000.0,
+                          "memdst": 0.0, "mem_s0": 10.0}
+    assert law.memory == (0.0, 0.01)
 
 
 def test_polach_law_and_contact_equivalence():

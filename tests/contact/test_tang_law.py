@@ -96,3 +96,25 @@ def test_falling_curve_rises_to_a_peak_and_falls(contact):
     assert c.stick_fraction[-1] == 0.0
     assert c.mu_rf[-1] == pytest.approx(float(law.mu(c.s[-1])), rel=0.02)
     assert c.slope[-1] < 0 and c.law == law
+
+
+def test_friction_memory_relaxes_exponentially_along_x():
+    # CONTACT's memory in steady rolling: from the leading edge (high x, mu = mu(0)) the coefficient
+    # relaxes towards mu_s(|s|) by the factor theta = d_c / (d_c + dt max(|s|, s_0)) per element
+    from solvers.contact.tang_falling import coefficients
+
+    law = get_friction_law("exponential", fkin=0.1, fexp1=0.25, sabsh1=20.0, memdst=0.003, mem_s0=1.0)
+    nx, ny, dt, s = 12, 3, 2e-5, 0.05
+    ix, iy = np.meshgrid(np.arange(nx), np.arange(ny), indexing="ij")
+    ix, iy = ix.ravel(), iy.ravel()
+    mu = coefficients(law, np.full(ix.size, s), ix, iy, dt).reshape(nx, ny)
+    theta = 3e-6 / (3e-6 + dt * s)
+    k = nx - np.arange(nx)                    # elements passed since the leading edge, 1 at i = nx - 1
+    mus = float(law.mu(s))
+    want = mus + (law.mu_static - mus) * theta ** k
+    np.testing.assert_allclose(mu, np.repeat(want[:, None], ny, axis=1), rtol=1e-13)
+    # without memory: the law itself
+    plain = get_friction_law("exponential", fkin=0.1, fexp1=0.25, sabsh1=20.0)
+    assert np.array_equal(coefficients(plain, np.full(ix.size, s), ix, iy, dt), plain.mu(np.full(ix.size, s)))
+    with pytest.raises(ValueError, match="transient TANG takes the instantaneous law"):
+        tang_transient(np.ones((3, 3)), 1e-3, 1e-3, V, law, gamma_y=-1e-3)
