@@ -51,10 +51,16 @@ def solve(curve: str):
     from ..config import ConfigError
     from ..curving import solve_curve
 
+    from solvers.curving import CurvingError
+
     try:
         return solve_curve(curve)
     except ConfigError as e:
         raise one_line(e) from None
+    except CurvingError as e:          # no equilibrium: the curve and vehicle are valid, the verdict has no input
+        from ..curving import curve_file
+
+        raise ConfigError(str(curve_file(curve)), detail=f"no steady curving state: {e}") from None
 
 
 def run_stages(name: str, stages) -> None:
