@@ -147,7 +147,9 @@ def main(argv=None) -> int:
     folder = paths.build() / "studies" / "radius" / "curves"
     rows = []
     try:
-        for R in (float(x) for x in args.radii.split(",")):
+        from ..progress import progress
+
+        for R in progress([float(x) for x in args.radii.split(",")], desc="radius study", unit="curve"):
             v = curve_verdict(args.base, folder, R, reuse=not args.rerun)
             rows.append(summarise(R, v["V"], v["cant"], v["rows"]))
             log.info("radius %g m: %s", R, rows[-1]["squealing"] or "no squeal")
