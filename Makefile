@@ -84,7 +84,7 @@ all: report ## run the default case as far as the stages exist (wheel, rail, con
 
 help: ## list the targets
 	@grep -hE '^[a-z][a-zA-Z_-]*:.*## ' $(MAKEFILE_LIST) | sed 's/:.*## /\t/' | awk -F'\t' '{printf "  %-10s %s\n", $$1, $$2}'
-	@echo "  variables: CASE=$(CASE) (available: $(notdir $(basename $(wildcard pipeline/cases/*.toml)))), WHEEL=, RAIL= for mesh/modes/rail alone (default: the case's)"
+	@echo "  variables: CASE=$(CASE) (available: $(notdir $(basename $(wildcard pipeline/cases/*.toml))); a curve's wheel: CASE=<curve>/<wheel>), WHEEL=, RAIL= for mesh/modes/rail alone (default: the case's)"
 
 # --- setup: Debian packages (once), then the venv (again when requirements change)
 .apt-stamp: debian-packages.txt

@@ -19,7 +19,7 @@ from pipeline.atomic import save_text
 
 ROOT = Path(__file__).resolve().parent.parent
 OUT = ROOT / "docs" / "benchmarks.md"
-SUITES = ["wheel", "contact", "rail", "greens", "fast_rail", "interaction", "radiation", "stability", "study",
+SUITES = ["wheel", "contact", "rail", "greens", "fast_rail", "any_point", "interaction", "radiation", "stability", "study",
           "study_cases", "fresh_make", "friction"]
 
 

@@ -195,7 +195,7 @@ def run_report(case: str) -> str:
     cpath, c = rc.case_file, rc.case
     out = paths.build() / "report" / case
     figdir = out / "figures"
-    figdir.mkdir(parents=True, exist_ok=True)
+    (figdir / case).parent.mkdir(parents=True, exist_ok=True)  # figures/<case>_*.png; a curve wheel's in figures/<curve>/
     sections = [f"# Curve squeal report: case `{case}`\n\n{c['description']}\n\n"
                 f"Case file `{paths.shown(cpath)}`: wheel `{c['wheel']}`, rail `{c['rail']}`, dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm, "
                 f"{rc.friction.text}, gamma_y = {c['kinematics']['gamma_y']}, v = {3.6 * c['kinematics']['speed']:.0f} km/h.\n",

@@ -127,3 +127,44 @@ def test_one_stage_table_for_the_command_line_and_make():
     r = subprocess.run([sys.base_prefix + "/bin/python3", "-I", "-S", "pipeline/deps.py", "--case",
                         "pipeline/cases/default.toml"], cwd=paths.ROOT, capture_output=True, text=True)
     assert r.returncode == 0 and r.stdout.split() == ["c20", "bv50"], r.stderr
+
+
+@pytest.mark.validation
+@pytest.mark.parametrize("case", ["dy30", "straight"])
+def test_off_list_contact_cases_run_end_to_end(case):
+    """A copy of the default case at dy_WR = -30 mm (y^R = +4.1 mm) and one on the straight-web
+    wheel (y^R = -5.2 mm): neither contact point is on the BV50 file's contact.y list; both run
+    `make radiate` with no file edited (the rail from the running surface's wave table).  Slow
+    (the surface table once, minutes; the straight wheel's modes)."""
+    import subprocess
+
+    import numpy as np
+
+    r = subprocess.run(["make", "--no-print-directory", "radiate", f"CASE={case}"], cwd=paths.ROOT,
+                       capture_output=True, text=True, timeout=3600)
+    assert r.returncode == 0, r.stderr[-2000:]
+    with np.load(paths.case_dir(case) / "greens.npz") as g, np.load(paths.case_dir(case) / "radiate.npz") as w:
+        assert abs(float(g["y_rail"]) - float(g["y_rail_contact"])) < 1e-12  # the point itself, not a node near it
+        assert float(w["L_F2"]) > 10.0 and np.isfinite(float(w["L_W"]))
+
+
+def test_a_curve_wheel_runs_through_the_cli(tmp_path):
+    """A curve wheel's case file (as the curve stage writes it) is a case for every stage:
+    `check` and `contact --case r150/a1i` put the artifact in build/cases/r150/a1i/."""
+    import os
+    import subprocess
+    import sys
+
+    f = tmp_path / "curves" / "r150" / "cases" / "a1i.toml"
+    f.parent.mkdir(parents=True)
+    f.write_text((paths.ROOT / "pipeline/cases/default.toml").read_text().replace('name = "default"', 'name = "a1i"'))
+    env = dict(os.environ, SQUEAL_BUILD_DIR=str(tmp_path), OMP_NUM_THREADS="1")
+    for stage in ("check", "contact"):
+        r = subprocess.run([sys.executable, "-m", "pipeline", stage, "--case", "r150/a1i"], cwd=paths.ROOT, env=env,
+                           capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
+    assert (tmp_path / "cases" / "r150" / "a1i" / "contact.npz").exists()
+    r = subprocess.run([sys.executable, "-m", "pipeline", "contact", "--case", "r150/a2o"], cwd=paths.ROOT, env=env,
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and r.stderr.strip().endswith("run make curve CURVE=r150 first")
+    assert len(r.stderr.strip().splitlines()) == 1
