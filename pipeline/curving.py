@@ -5,12 +5,13 @@ API (stable; ``pipeline.verdict`` builds ``make curve`` on it)::
 
     from pipeline.curving import solve_curve
     sol = solve_curve("r150")            # -> CurveSolution (memoised per process and file contents)
+    sol = solve_curve("r150", radius_m=300.0, mu=0.2)   # curve keys replaced (validated like the file)
     for w in sol.wheels:                 # WheelOperatingPoint, ids a1o, a1i, a2o, a2i
         w.wheel, w.dy_wr, w.gamma_y, w.y_wheel, w.normal_load, w.nadal, ...
         w.case_fields()                  # the keys of an ordinary case file for this wheel
 
     load_vehicle(name) -> dict           # geometry/vehicles/<name>.toml, validated (pipeline.curve_schemas)
-    load_curve(name) -> dict             # pipeline/curves/<name>.toml, validated
+    load_curve(name, **overrides) -> dict   # pipeline/curves/<name>.toml, validated
     curve_file(name), vehicle_file(name), available_curves(), available_vehicles()
 
 ``CurveSolution``: name, curve and vehicle (validated dicts), wheel, rail, wheel_profile,
@@ -95,8 +96,23 @@ def load_vehicle(name: str) -> dict:
     return v
 
 
-def load_curve(name: str) -> dict:
-    return _load_named(curve_file(name), CURVE, "curve", available_curves())
+def load_curve(name: str, **overrides) -> dict:
+    """The validated curve file; ``overrides``: top-level keys (radius_m, speed_kmh, cant_mm,
+    gauge_widening_mm, ...) and ``mu`` replaced before validation (what-ifs and studies)."""
+    c = _load_named(curve_file(name), CURVE, "curve", available_curves())
+    if not overrides:
+        return c
+    from .config import validate
+
+    data = {k: v for k, v in c.items() if v is not None}
+    data["friction"] = {k: v for k, v in c["friction"].items() if v is not None}
+    for k, v in overrides.items():
+        if k == "mu":
+            data["friction"]["mu"] = v
+        else:
+            data[k] = v
+    what = ", ".join(f"{k} = {v!r}" for k, v in overrides.items())
+    return validate(data, CURVE, f"{curve_file(name)} with {what}")
 
 
 def wheel_load_N(v: dict) -> float:
@@ -163,10 +179,11 @@ class WheelOperatingPoint:
     def case_fields(self) -> dict:
         """The keys of an ordinary case file (pipeline.schemas.CASE) that this wheel fixes;
         the caller adds name, time and listener."""
-        return {"wheel": self.wheel_file, "rail": self.rail_file,
-                "contact": {"dy_wr": self.dy_wr, "rolling_circle_y": self.rolling_circle_y,
-                            "wheel_profile": self.wheel_profile, "rail_profile": self.rail_profile},
-                "friction": {"law": self.friction_law, "mu": self.mu},
+        contact = {"dy_wr": self.dy_wr, "rolling_circle_y": self.rolling_circle_y}
+        contact.update({k: v for k, v in (("wheel_profile", self.wheel_profile), ("rail_profile", self.rail_profile))
+                        if v})
+        friction = {"mu": self.mu} if self.friction_law == "coulomb" else {"law": self.friction_law, "mu": self.mu}
+        return {"wheel": self.wheel_file, "rail": self.rail_file, "contact": contact, "friction": friction,
                 "kinematics": {"gamma_y": self.gamma_y, "gamma_x": self.gamma_x, "speed": self.speed},
                 "loading": {"preload": self.normal_load}}
 
@@ -206,11 +223,12 @@ def _profiles(v: dict, c: dict):
     return pw, pr, wheel, rail, TrackRail(rail, inc), desc
 
 
-def build_problem(name: str):
-    """(curve, vehicle, Vehicle, Track, Profiles, CreepLaw, names) of a curve file."""
+def build_problem(name: str, **overrides):
+    """(curve, vehicle, Vehicle, Track, Profiles, CreepLaw, names) of a curve file (``overrides``
+    as in ``load_curve``)."""
     from solvers.curving import CreepLaw, Profiles, Track, Vehicle, flange_edge
 
-    c = load_curve(name)
+    c = load_curve(name, **overrides)
     v = load_vehicle(c["vehicle"])
     pw, pr, wheel, rail, rail_t, desc = _profiles(v, c)
     r0 = pw["tyre"]["rolling_radius"]
@@ -242,19 +260,20 @@ def _file_key(name: str) -> tuple:
     return tuple(out)
 
 
-def solve_curve(name: str) -> CurveSolution:
+def solve_curve(name: str, **overrides) -> CurveSolution:
     """Load the curve ``name``, its vehicle, wheel, rail and profiles, and solve the leading
-    bogie's steady curving.  ConfigError for bad input (one line per problem, nothing solved);
-    solvers.curving.CurvingError when no equilibrium is found."""
-    return _solve_cached(name, _file_key(name))
+    bogie's steady curving.  ``overrides``: curve keys replaced (radius_m=..., speed_kmh=...,
+    mu=...; validated like the file).  ConfigError for bad input (one line per problem,
+    nothing solved); solvers.curving.CurvingError when no equilibrium is found."""
+    return _solve_cached(name, _file_key(name), tuple(sorted(overrides.items())))
 
 
-@functools.lru_cache(maxsize=16)
-def _solve_cached(name: str, key: tuple) -> CurveSolution:
+@functools.lru_cache(maxsize=64)
+def _solve_cached(name: str, key: tuple, overrides: tuple) -> CurveSolution:
     from solvers.curving import solve
     from solvers.curving.summary import wheel_points
 
-    c, v, veh, trk, prof, law, names = build_problem(name)
+    c, v, veh, trk, prof, law, names = build_problem(name, **dict(overrides))
     sol = solve(prof, veh, trk, law)
     extra = dict(rolling_circle_y=trk.c, speed=trk.speed, mu=law.mu, friction_law=c["friction"]["law"],
                  wheel_file=names["wheel"], rail_file=names["rail"], wheel_profile=names["wheel_profile"],

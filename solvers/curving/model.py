@@ -1,8 +1,8 @@
 """The quasi-static equations of steady curving: one wheelset on its two rails, the leading
 bogie's two wheelsets on their primary suspension and the frame (Boocock 1969; Wickens,
-*Fundamentals of Rail Vehicle Dynamics*, 2003, ch. 6; Elkins & Gostling 1977 for the flange
-contact as a constraint), with the contact geometry of the actual profiles (``wheelrail``) and
-the creep forces of ``creep``.
+*Fundamentals of Rail Vehicle Dynamics*, 2003, the steady curving of the two-axle vehicle and
+bogie), with the contact geometry of the actual profiles (``wheelrail``), the creep forces of
+``creep`` and flange contact as a unilateral constraint (``solve``).
 
 Track frame: x forward (travel), y outward (toward the outer rail), z down; the curve's centre
 is at y = -R.  A wheelset at x_i (+a leading, -a trailing, from the bogie centre) has lateral

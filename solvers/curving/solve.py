@@ -1,5 +1,5 @@
 """Solving the steady-curving equations (``model``) of a free wheelset or of the leading bogie,
-with flange contact as a unilateral constraint (an active set, as in Elkins & Gostling 1977).
+with flange contact as a unilateral constraint (an active set).
 
 Unknowns, scaled to order one: the lateral shift y in mm (or, for a wheelset whose flange is
 in contact, the flange's normal force N_f in units of the static wheel load Q0, y being then
@@ -147,20 +147,24 @@ def _newton(fun, z, tol=TOL, max_iter=40):
 
 
 def _start(veh, trk, lam0, n_ws, y_f):
-    y0 = 1e3 * min(veh.r0 * veh.rolling_circle / (lam0 * trk.radius), 0.8 * y_f)
+    y0 = 1e3 * min(veh.r0 * veh.rolling_circle / (lam0 * trk.radius), 0.8 * y_f, 0.02)
     per = [y0, 0.0, 0.0, 1.0, 1.0]
     return np.array(per * n_ws + ([y0, 0.0] if n_ws == 2 else []), float)
 
 
 def _starts(veh, trk, lam0, n_ws, y_f):
     """Starting points: pure rolling without flange contact; for the bogie also the leading
-    outer flange in contact with the frame at the chord position (a tight curve)."""
+    outer flange in contact with the frame at the chord position (a tight curve), and the
+    diagonal position (the trailing wheelset's inner flange in contact too: a very tight one)."""
     yield _start(veh, trk, lam0, n_ws, y_f), [0] * n_ws
-    if n_ws == 2:
+    if n_ws == 2 and np.isfinite(y_f):
         a = veh.semi_wheelbase
         pb = 0.25 * y_f / a
         yield np.array([0.3, 1e3 * (a / trk.radius + pb), 0.0, 1.0, 1.0, 500 * y_f, 1e3 * (pb - a / trk.radius),
                         0.0, 1.0, 1.0, 750 * y_f, 1e3 * pb]), [1, 0]
+        pb = y_f / a  # very tight: the trailing wheelset against the inner rail
+        yield np.array([0.3, 1e3 * (a / trk.radius + pb), 0.0, 1.0, 1.0, 0.3, 1e3 * (pb - a / trk.radius),
+                        0.0, 1.0, 1.0, 0.0, 1e3 * pb]), [1, -1]
 
 
 def _safe(fun_of, flanges, y_f, prof, veh, trk, law):
@@ -204,12 +208,38 @@ def _equilibrium(fun_of, z, flanges, y_f, prof, veh, trk, law):
     return z, np.full(len(z), np.inf), flanges, None, MAX_ACTIVE
 
 
+def _continuation(fun_of, y_f, prof, veh, trk, law, lam0, n_ws, steps):
+    """Equilibrium continued in curvature from a ten times larger radius: steps of
+    (1/R - 1/(10 R)) / steps, halved (down to 1/64 of that) when a step does not converge."""
+    import dataclasses
+
+    k0, k1 = 0.1 / trk.radius, 1.0 / trk.radius
+    far = dataclasses.replace(trk, radius=1.0 / k0)
+    z, r, flanges, keep, passes = _equilibrium(fun_of, _start(veh, far, lam0, n_ws, y_f), [0] * n_ws, y_f, prof,
+                                               veh, far, law)
+    if keep is None:
+        return z, r, flanges, keep, passes
+    k, dk = k0, (k1 - k0) / steps
+    good = (z, r, list(flanges), keep, passes)
+    while k < k1 * (1 - 1e-12):
+        kn = min(k + dk, k1)
+        z, r, flanges, keep, passes = _equilibrium(fun_of, good[0].copy(), list(good[2]), y_f, prof, veh,
+                                                   dataclasses.replace(trk, radius=1.0 / kn), law)
+        if keep is None or np.max(np.abs(r)) > 1e-8:
+            dk *= 0.5
+            if dk < (k1 - k0) / (64 * steps):
+                return z, r, flanges, None, passes
+            continue
+        k, good = kn, (z, r, list(flanges), keep, passes)
+        dk *= 1.5
+    return good
+
+
 def solve(prof: Profiles, veh: Vehicle, trk: Track, law: CreepLaw, bogie: bool = True,
           lam0: float = 0.1, steps: int = 8) -> CurvingSolution:
     """Steady curving of the leading bogie (bogie=True) or of one free wheelset.  Started in
-    pure rolling (conicity lam0); when that does not converge, continued in curvature 1/R
-    from a ten times larger radius in ``steps`` steps, each started from the last."""
-    import dataclasses
+    pure rolling (conicity lam0), and for a bogie also in flange contact; when neither
+    converges, continued in curvature 1/R from a ten times larger radius (``_continuation``)."""
 
     y_f = flange_shift(prof.wheel, prof.rail, trk.c, prof.edge)
     fun_of = bogie_residual if bogie else wheelset_only_residual
@@ -219,19 +249,17 @@ def solve(prof: Profiles, veh: Vehicle, trk: Track, law: CreepLaw, bogie: bool =
         if keep is not None and np.max(np.abs(r)) <= 1e-8:
             break
     if keep is None or np.max(np.abs(r)) > 1e-8:
-        R_far = 10.0 * trk.radius
-        curv = np.linspace(1.0 / R_far, 1.0 / trk.radius, steps + 1)
-        far = dataclasses.replace(trk, radius=R_far)
-        z, flanges = _start(veh, far, lam0, n_ws, y_f), [0] * n_ws
-        for k in curv:
-            z, r, flanges, keep, passes = _equilibrium(fun_of, z, flanges, y_f, prof, veh,
-                                                       dataclasses.replace(trk, radius=1.0 / k), law)
-            if keep is None:
-                break
+        z, r, flanges, keep, passes = _continuation(fun_of, y_f, prof, veh, trk, law, lam0, n_ws, steps)
     res = float(np.max(np.abs(r)))
     if keep is None or not np.isfinite(res) or res > 1e-8:
         raise CurvingError(f"steady curving did not converge (largest residual {res:.2e} of the wheel load; "
                            f"R = {trk.radius:g} m, flange set {flanges})")
+    for k, ws in enumerate(keep[0], start=1):
+        for c in ws.contacts:
+            if c.N < 0.0:
+                raise CurvingError(f"wheel a{k}{'o' if c.side > 0 else 'i'}: its {c.point.zone} contact would pull "
+                                   f"({1e-3 * c.N:.1f} kN): the wheel lifts off it (flange climbing or wheel unloading), "
+                                   f"beyond the steady model (R = {trk.radius:g} m)")
     return CurvingSolution(keep[0], keep[1], keep[2], y_f, res, keep[3], passes)
 
 

@@ -11,11 +11,15 @@ a contact by less than a degree).
 
 Zones: the flange zone is the part of the wheel profile on the flange side of the first point,
 counted from the tread, where the wheel's slope reaches ``FLANGE_SLOPE`` (45 degrees, the
-limit of ``geometry.contact_point.FLANGE_ANGLE_DEG``); the tread zone is the rest.  The lowest
-point of each zone is found on the profile grid and refined by Newton's method on
+limit of ``geometry.contact_point.FLANGE_ANGLE_DEG``); the tread zone is the rest.  A flange
+contact is a second contact zone: a local minimum of the separation in the flange zone behind
+a ridge (``geometry.contact_point.RIDGE``), as the project's rigid contact search reports it
+(``second``).  Each point is found on the profile grid and refined by Newton's method on
 sep'(y) = 0 (sep'' from the splines' curvatures), so that it is a smooth function of the shift.
 The wheel touches in its tread zone alone while the flange zone's lowest point is higher; the
-shift where both are equally low is the flange (two-point) contact (``flange_shift``).
+shift where both are equally low is the flange (two-point) contact (``flange_shift``).  Where
+the contact climbs the flange root without a jump (no second zone) there is no two-point
+contact: the one contact point moves up the flange, its angle rising.
 """
 from __future__ import annotations
 
@@ -24,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from geometry.contact_point import FLANGE_ANGLE_DEG
+from geometry.contact_point import FLANGE_ANGLE_DEG, RIDGE
 
 FLANGE_SLOPE = math.tan(math.radians(FLANGE_ANGLE_DEG))
 
@@ -91,30 +95,47 @@ def _refine(wheel, rail_t, shift, y, lo, hi):
     return y
 
 
+def _minima(sep):
+    """Indices of the interior local minima of sep (sep[i] <= left, < right)."""
+    return np.flatnonzero((sep[1:-1] <= sep[:-2]) & (sep[1:-1] < sep[2:])) + 1
+
+
 def zone_point(wheel, rail_t, shift: float, zone: str, edge: float) -> ContactPoint | None:
-    """The lowest point of the tread or flange zone at this shift, or None when the zone does
-    not face the rail.  The search on the grid interpolates the rail linearly between its
-    points (``rail_t.y``); the refinement uses the splines."""
+    """The contact point of the tread or of the flange at this shift.
+
+    On the profile grid (the rail interpolated linearly between its points, ``rail_t.y``): the
+    tread point is the lowest local minimum of the separation on the tread side of ``edge``, or,
+    when the separation falls without a break from the tread into the flange zone (a contact
+    climbing the flange root, as S1002 on a new head), the lowest point of all; the flange
+    point is the lowest local minimum on the flange side that a ridge higher than RIDGE
+    separates from the tread point (a second contact zone), else None.  Refined by Newton's
+    method on the splines."""
     y = wheel.y
-    mask = y > edge if zone == "tread" else y <= edge
-    if not mask.any():
-        return None
-    ys = y[mask]
     rz = _rail_points(rail_t)
-    sep = -wheel.z[mask] - np.interp(ys + shift, rail_t.y, rz, left=np.nan, right=np.nan)
+    sep = -wheel.z - np.interp(y + shift, rail_t.y, rz, left=np.nan, right=np.nan)
     sep = np.where(np.isfinite(sep), sep, np.inf)
     if not np.isfinite(sep).any():
         return None
-    i = int(np.argmin(sep))
+    mins = _minima(sep)
+    tread = mins[y[mins] > edge]
+    t = int(tread[np.argmin(sep[tread])]) if tread.size else int(np.argmin(sep))
+    if zone == "tread":
+        i = t
+    else:
+        fl = mins[(y[mins] <= edge) & (mins != t)]
+        fl = [j for j in fl if np.max(sep[min(j, t):max(j, t) + 1]) - sep[j] > RIDGE]
+        if not fl:
+            return None
+        i = int(min(fl, key=lambda j: sep[j]))
     h = y[1] - y[0]
-    lo, hi = (edge, y[-1]) if zone == "tread" else (y[0], edge)
-    yc = _refine(wheel, rail_t, shift, float(ys[i]), max(lo, ys[i] - 2 * h), min(hi, ys[i] + 2 * h))
+    yc = _refine(wheel, rail_t, shift, float(y[i]), float(y[i] - 8 * h), float(y[i] + 8 * h))
     Y = yc + shift
     slope = float(rail_t.slope(Y))
     angle = math.atan(slope)
     d2 = -float(wheel.curvature(yc)) - float(rail_t.curvature(Y))
     return ContactPoint(y_wheel=yc, y_track=Y, y_rail=rail_t.to_rail(Y), angle=angle, z_wheel=float(wheel(yc)),
-                        sep=float(_sep(wheel, rail_t, shift, yc)), B=0.5 * d2 * math.cos(angle) ** 3, zone=zone)
+                        sep=float(_sep(wheel, rail_t, shift, yc)), B=0.5 * d2 * math.cos(angle) ** 3,
+                        zone="flange" if zone == "flange" else "tread")
 
 
 def flange_gap(wheel, rail_t, shift: float, edge: float) -> float:
@@ -129,7 +150,7 @@ def flange_gap(wheel, rail_t, shift: float, edge: float) -> float:
 
 def flange_shift(wheel, rail_t, c: float, edge: float, span: float = 0.04) -> float:
     """Wheelset shift y (m, toward this wheel's field side) at which the flange touches: the
-    root of flange_gap(c + y) = 0 on [0, span] (brentq)."""
+    root of flange_gap(c + y) = 0 on [-10 mm, span] (brentq); inf when there is none."""
     from scipy.optimize import brentq
 
     g = lambda y: flange_gap(wheel, rail_t, c + y, edge)  # noqa: E731
@@ -137,6 +158,5 @@ def flange_shift(wheel, rail_t, c: float, edge: float, span: float = 0.04) -> fl
     gs = np.array([g(v) for v in ys])
     k = np.flatnonzero((gs[:-1] > 0) & (gs[1:] <= 0))
     if k.size == 0:
-        raise ValueError(f"no flange contact within {1e3 * span:.0f} mm of shift (rolling circle at "
-                         f"{1e3 * c:+.1f} mm from the rail centre)")
+        return math.inf  # no flange within reach (a flangeless profile): no constraint
     return float(brentq(g, ys[k[0]], ys[k[0] + 1], xtol=1e-13, rtol=1e-13))
