@@ -6,8 +6,9 @@ read: abstracts and excerpts, cited by address) is ``None`` and shows as "n/s". 
 to these observations.  ``model`` names the closest configuration the tool can model: the
 base curve (its vehicle, rail and friction), radius (m) and speed (km/h; None: the design rule's of
 ``pipeline.verdict.radius``, whose cant rule holds for all) -- a verdict of the curve stage there.
-The project ships a metro vehicle on the C20 wheel and a freight bogie: every observation here is
-compared with the metro vehicle (trams and other cars differ in wheel, bogie and load: stated).
+The project ships a metro vehicle on the C20 wheel and a freight bogie (Y25, 920 mm wheel, 60E1): the
+heavy-haul observation is compared with the freight bogie, every other one with the metro vehicle
+(trams and other cars differ in wheel, bogie and load: stated).
 
     .venv/bin/python -m pipeline.verdict.field     # runs (or reuses) the verdicts, writes 92_field.md
 """
@@ -63,7 +64,7 @@ OBSERVATIONS = [
      "vehicle": "heavy-haul ore wagons (trailing inner wheels)", "radius_m": 1000.0, "speed_kmh": None,
      "f_hz": None, "level": None,
      "note": "squealing wheels under predominantly longitudinal creepage (> 1 %), little or no lateral creepage",
-     "model": ("r150", 1000.0, None)},
+     "model": ("y25_r300", 1000.0, None)},
     {"key": "thompson", "squeal": True,
      "source": "Thompson, 2009, Railway Noise and Vibration, Elsevier, ch. 9 (as cited by Zenzerovic 2014, ch. 2)",
      "vehicle": "guideline (all vehicles)", "radius_m": 200.0, "speed_kmh": None, "f_hz": "250-5000 (main tones)",
@@ -83,6 +84,15 @@ OBSERVATIONS = [
 ]
 
 
+def vehicle_of(base: str) -> str:
+    """The vehicle named by the shipped curve ``base``."""
+    import tomllib
+
+    from ..paths import ROOT
+
+    return str(tomllib.loads((ROOT / "pipeline" / "curves" / f"{base}.toml").read_text())["vehicle"])
+
+
 def fmt(x, spec=".0f", unit=""):
     if x is None or (isinstance(x, float) and not math.isfinite(x)):
         return "n/s"
@@ -97,7 +107,8 @@ def table_markdown(verdicts: dict) -> str:
     for o in OBSERVATIONS:
         v = verdicts.get(o["model"]) if o["model"] else None
         speed = f"{v['V']:g}" if v and "V" in v else f"{o['model'][2]:g}" if o["model"] and o["model"][2] else "design"
-        conf = (f"C20 metro ({o['model'][0]}), R = {o['model'][1]:g} m, {speed} km/h" if o["model"] else "-")
+        conf = (f"{vehicle_of(o['model'][0])} ({o['model'][0]}), R = {o['model'][1]:g} m, {speed} km/h"
+                if o["model"] else "-")
         if v is None:
             tool = ("not run", "-", "-")
         elif "error" in v:
@@ -135,19 +146,30 @@ def difference(o: dict, v: dict | None) -> str:
 
 
 def tally(verdicts: dict) -> str:
-    """One sentence: in how many observations the tool's occurrence agrees with the source's."""
+    """In how many observations the tool's occurrence agrees with the source's, and where not."""
     n = agree = 0
+    missed, extra = set(), set()
     for o in OBSERVATIONS:
         v = verdicts.get(o["model"]) if o["model"] else None
         if v is None or "error" in v:
             continue
         n += 1
         agree += bool(v["squeals"]) == bool(o["squeal"])
-    return (f"Occurrence: the tool's verdict agrees with the source in {agree} of {n} observations; where the source "
-            "reports squeal on radii of 120-300 m (and 1000 m) the tool's metro vehicle is quiet at mu = 0.35: in this "
-            "model it squeals only at 75 m and below (docs/validation/91_verdict.md), its inner leading wheel's "
-            "longitudinal creepage keeping it stable above.  Frequency: where both squeal the tool's 435 Hz is the "
-            "C20 wheel's (2,0,a) mode, not the trams' wheels.")
+        if o["squeal"] and not v["squeals"]:
+            missed.add(o["model"][1])
+        if v["squeals"] and not o["squeal"]:
+            extra.add(o["model"][1])
+    text = f"Occurrence: the tool's verdict agrees with the source in {agree} of {n} observations."
+    if missed:
+        text += (f"  Where the source reports squeal, the tool's vehicle is quiet at mu = 0.35 at R = "
+                 f"{', '.join(f'{r:g}' for r in sorted(missed))} m: in this model the metro squeals only on the "
+                 "tightest radii (docs/validation/91_verdict.md), the curving wheelset's longitudinal creepage keeping "
+                 "its inner leading wheel stable above; a source's other vehicle, wheel, profiles or friction are not "
+                 "modelled.")
+    if extra:
+        text += f"  The tool squeals where the source expects none at R = {', '.join(f'{r:g}' for r in sorted(extra))} m."
+    return text + ("  Frequency: where both squeal the tool's frequency is the C20 wheel's mode, not the source "
+                   "vehicle's wheel.")
 
 
 def verdict_of(run: dict) -> dict:
@@ -189,7 +211,8 @@ def main(argv=None) -> int:
           "Published field observations (vehicle, curve radius, speed, measured squeal frequency and level with "
           "its distance and metric, as far as the source states them; n/s: not stated in the text that could be "
           "read) beside the curve stage's verdict (`make curve`) for the closest configuration the tool can model: "
-          "the C20 metro vehicle (`geometry/vehicles/c20_metro.toml`) on the BV50 rail with mu = 0.35, at the "
+          "the C20 metro vehicle (`geometry/vehicles/c20_metro.toml`) on the BV50 rail with mu = 0.35 (the heavy-haul "
+          "row: the Y25 freight bogie of `pipeline/curves/y25_r300.toml` on 60E1), at the "
           "observation's radius and speed (the design rule's speed and cant of `pipeline/verdict/radius.py` where "
           "the source gives none).  Nothing is fitted to these observations; the differences are stated.\n\n"
           + table_markdown(verdicts) + "\n\n" + tally(verdicts) + "\n\n" + NOTES +
