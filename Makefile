@@ -221,7 +221,7 @@ VEHICLE  = $(call TOML_KEY,vehicle,$(CURVE_F))
 VEHICLE_F = geometry/vehicles/$(VEHICLE).toml
 CURVE_WHEEL = $(or $(call TOML_KEY,wheel,$(VEHICLE_F)),c20)
 CURVE_RAIL  = $(or $(call TOML_KEY,rail,$(CURVE_F)),bv50)
-$(BUILD)/curves/$(CURVE)/verdict.csv: $(CURVE_F) $(wildcard $(VEHICLE_F)) $(PROFILES) $(DEPS_curve) | $(STAMP)
+$(BUILD)/curves/$(CURVE)/verdict.csv: $(CURVE_F) $(wildcard $(VEHICLE_F)) geometry/wheels/$(CURVE_WHEEL).toml geometry/rails/$(CURVE_RAIL).toml $(PROFILES) $(DEPS_curve) | $(STAMP)
 	@$(MAKE) --no-print-directory $(BUILD)/wheels/$(CURVE_WHEEL)/modes.npz $(BUILD)/rails/$(CURVE_RAIL)/rail.npz \
 	  WHEEL=$(CURVE_WHEEL) RAIL=$(CURVE_RAIL) CASE=default
 	$(PY) -m pipeline curve --curve $(CURVE) $(if $(NO_WHAT_IFS),--no-what-ifs)

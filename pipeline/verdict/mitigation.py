@@ -49,13 +49,20 @@ class CaseModels:
 
         from ..case import resolve_case
 
+        from ..friction import case_friction
+
         self.ctx = load_context(case, radiation=False)
-        self.spin = float(resolve_case(case).case["kinematics"].get("spin", 0.0))   # 1/m
+        c = resolve_case(case).case
+        self.spin = float(c["kinematics"].get("spin", 0.0))   # 1/m
+        self.friction = case_friction(c, case)                # the case's own law (its curve is in contact.npz)
         # the Coulomb curves the contact artifact holds (labels 'coulomb(mu=0.35)'), by coefficient
         self.mus = np.array([float(lab.split("=")[1].rstrip(")")) for lab in curve_labels(self.ctx.contact)
                              if lab.startswith("coulomb(mu=")], float)
-        if self.mus.size == 0:
-            raise ValueError(f"case {case}: its friction is not Coulomb's; the what-ifs scale a Coulomb curve")
+
+    @property
+    def coulomb(self) -> bool:
+        """Coulomb friction: the what-ifs over mu apply (they scale a Coulomb curve)."""
+        return self.friction.name == "coulomb" and self.mus.size > 0
 
     def contact(self, mu: float):
         """The case's ContactModel with the Coulomb friction curve at ``mu`` (any value), scaled from
@@ -63,6 +70,10 @@ class CaseModels:
         from solvers.interaction import contact_model
         from solvers.mitigation import coulomb_curve_at
 
+        if not self.coulomb:                                  # another law: its own curve, at its own mu only
+            if abs(mu - self.ctx.mu) > 1e-12:
+                raise ValueError(f"friction law {self.friction.name}: curves at another mu are not scaled")
+            return contact_model(self.ctx.contact, self.friction)
         i = int(np.argmin(np.abs(self.mus - mu)))
         cm = contact_model(self.ctx.contact, float(self.mus[i]))
         if abs(self.mus[i] - mu) <= 1e-12:
@@ -142,6 +153,9 @@ def friction_what_if(models: CaseModels, *, tol: float = MU_TOL, confirm: bool =
 
     mu = float(models.ctx.mu)
     out = FrictionWhatIf(mu)
+    if not models.coulomb:
+        out.note = f"not computed for the friction law {models.friction.name} (the threshold scales a Coulomb curve)"
+        return out
     try:
         b = threshold(models.unstable, MU_MIN, mu, tol)
     except ValueError as e:

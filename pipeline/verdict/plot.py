@@ -7,7 +7,8 @@ import math
 
 import numpy as np
 
-EXAGGERATE = 25.0     # lateral shift and yaw drawn this many times larger
+EXAGGERATE = 25.0     # lateral shift (and yaw, up to YAW_DRAWN) drawn this many times larger
+YAW_DRAWN = 0.25      # rad: the largest yaw drawn
 
 
 def bogie_figure(info, points, rows):
@@ -27,6 +28,8 @@ def bogie_figure(info, points, rows):
     by = {p.wheel: p for p in points}
     row = {r["wheel"]: r for r in rows}
     b = 0.5 * info.contact_spacing
+    psi_max = max((abs(p.angle_of_attack) for p in points), default=0.0)
+    yaw_x = min(EXAGGERATE, YAW_DRAWN / psi_max) if psi_max > 0 else EXAGGERATE   # yaw drawn at most YAW_DRAWN rad
     for axle, xa in (("a1", +a), ("a2", -a)):
         po, pi = by.get(axle + "o"), by.get(axle + "i")
         if po is None and pi is None:
@@ -35,7 +38,7 @@ def bogie_figure(info, points, rows):
         psi = (po if po is not None else pi).angle_of_attack  # yaw relative to the radial direction
         yc = -R + math.sqrt(R * R - xa * xa) + EXAGGERATE * shift
         radial = -math.atan2(xa, R)                 # heading of a radial wheelset at xa (the tangent)
-        ang = radial + EXAGGERATE * psi
+        ang = radial + yaw_x * psi
         for p, side in ((po, +1), (pi, -1)):
             if p is None:
                 continue
@@ -59,7 +62,7 @@ def bogie_figure(info, points, rows):
     ax.set_xlabel("along the track (m)")
     ax.set_ylabel("toward the outer rail (m)")
     ax.set_title(f"{info.vehicle} in {info.name}: R = {info.radius:g} m, {info.speed_kmh:g} km/h\n"
-                 f"(shift and yaw x{EXAGGERATE:g}; red: squeals, orange: screen unstable, green: stable; "
+                 f"(shift x{EXAGGERATE:g}, yaw x{yaw_x:.3g}; red: squeals, orange: screen unstable, green: stable; "
                  "square: flange contact)", fontsize=9)
     names = [r["wheel"] for r in rows]
     lpa = [r["L_pA"] if r["squeals"] and math.isfinite(r["L_pA"]) else 0.0 for r in rows]

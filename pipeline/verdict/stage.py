@@ -10,8 +10,10 @@
 4. the time loop (simulate) for every wheel with lateral creepage: it confirms or overrules the
    screen (squeal is L_F2 >= 10 dB, SPEC 6; a stable wheel's run decays within a second or two);
    for the squealing wheels radiate and listen, and the mitigation what-ifs (``mitigation.py``);
-5. ``build/curves/<curve>/verdict.csv`` (one row per wheel), ``verdict.md`` (read first) and
-   ``bogie.png`` (the bogie in the curve with its contact points), all written atomically.
+5. ``build/curves/<curve>/verdict.csv`` (one row per wheel), ``verdict.md`` (read first),
+   ``bogie.png`` (the bogie in the curve with its contact points) and ``verdict.json`` (the rows
+   with their provenance: the curve, vehicle and case configurations, git revision, versions),
+   all written atomically.
 """
 from __future__ import annotations
 
@@ -24,7 +26,7 @@ import numpy as np
 from .. import artifacts, paths
 from ..atomic import save_figure, save_text
 from ..progress import progress
-from .operating import CurveInfo, WheelPoint, curve_info, wheel_points
+from .operating import CurveInfo, WheelPoint, _get, curve_info, wheel_points
 
 log = logging.getLogger("pipeline.verdict")
 
@@ -51,10 +53,16 @@ def solve(curve: str):
     from ..config import ConfigError
     from ..curving import solve_curve
 
+    from solvers.curving import CurvingError
+
     try:
         return solve_curve(curve)
     except ConfigError as e:
         raise one_line(e) from None
+    except CurvingError as e:          # no equilibrium: the curve and vehicle are valid, the verdict has no input
+        from ..curving import curve_file
+
+        raise ConfigError(str(curve_file(curve)), detail=f"no steady curving state: {e}") from None
 
 
 def run_stages(name: str, stages) -> None:
@@ -149,6 +157,10 @@ def run_curve(curve: str, *, progress_bar: bool = True, what_ifs: bool = True) -
     save_figure(plot.bogie_figure(info, points, rows), out / "bogie.png", dpi=110)
     md = report.verdict_markdown(info, points, rows, wall=time.perf_counter() - t0)
     save_text(md, out / "verdict.md")
+    cfg = {"curve": _get(sol, "curve"), "vehicle": _get(sol, "vehicle"), "cases": cases, "what_ifs": what_ifs}
+    artifacts.save_json(out / "verdict.json", "curve-verdict", cfg,
+                        [{k: (None if isinstance(v, float) and not math.isfinite(v) else v)
+                          for k, v in r.items() if k in COLUMNS} for r in rows])
     loud = report.loudest(rows)
     log.info("curve %s: %s -> %s", curve, f"{loud['wheel']} squeals at {loud['f_squeal']:.0f} Hz, "
              f"L_pA = {loud['L_pA']:.1f} dB(A)" if loud else "no wheel squeals", out / "verdict.md")

@@ -70,3 +70,7 @@ def test_shipped_curve_end_to_end():
     md = (out / "verdict.md").read_text()
     assert "Loudest" in md and "listen.wav" in md
     assert (out / "bogie.png").stat().st_size > 10_000
+    import json
+
+    doc = json.loads((out / "verdict.json").read_text())
+    assert doc["__provenance__"]["kind"] == "curve-verdict" and [r["wheel"] for r in doc["payload"]] == list(rows)
