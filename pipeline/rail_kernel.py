@@ -81,6 +81,7 @@ def rail_kernel(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, grid:
             log.warning("%s", e)
             cached = False
     if not cached:
+        log.info("rail moving kernel at |y^R| = %.1f mm: not in the cache, building it", 1e3 * abs(float(y_r)))
         arrays = build_kernel(pr, abs(float(y_r)), v, dt, grid, taper)
         artifacts.save_npz(path, KIND, cfg, **arrays)
     if y_r < 0:

@@ -121,11 +121,13 @@ def _stages_after_touching(path, built):
 
 
 def test_touching_wheel_file_rebuilds_only_wheel_stages_and_dependents(built):
-    assert _stages_after_touching("geometry/wheels/c20.toml", built) == ["mesh", "modes", "greens", "contact", "shapes", "simulate", "radiate", "report"]
+    assert _stages_after_touching("geometry/wheels/c20.toml", built) == [
+        "mesh", "modes", "greens", "contact", "shapes", "simulate", "radiate", "stability", "report"]
 
 
 def test_touching_rail_file_rebuilds_only_rail_stages_and_dependents(built):
-    assert _stages_after_touching("geometry/rails/bv50.toml", built) == ["rail", "greens", "contact", "simulate", "radiate", "report"]
+    assert _stages_after_touching("geometry/rails/bv50.toml", built) == [
+        "rail", "greens", "contact", "simulate", "radiate", "stability", "report"]
 
 
 def test_touching_radiation_source_rebuilds_only_radiate_and_report(built):

@@ -65,17 +65,18 @@ def test_curve_between_its_neighbours_and_self_similar(static, tmp_path):
 
 def test_contact_model_selects_by_law_and_value(static):
     class Law:                                   # anything with .name and .params (a FrictionLaw)
-        name, params = "linear", {"fstat": 0.4, "fkin": 0.3}
+        name, params = "linear", {"fkin": 0.3, "flin1": 0.1, "sabsh1": 300.0}
 
     fr = [Friction.coulomb(0.3), Friction.coulomb(0.33), Friction.of("linear", Law.params)]
     curves = [{"s": np.array([0.0, 0.1 * i + 0.1]), "mu_rf": np.array([0.0, 0.3 + i]), "slope": np.zeros(2),
                "gamma_sat": 0.01 * i} for i in range(3)]
     arrays = _contact(static, fr[:2], curves[:2], [(fr[2].label, 0.4, "linear", curves[2])])
-    assert list(arrays["rf_label"]) == ["coulomb(mu=0.3)", "coulomb(mu=0.33)", "linear(fkin=0.3, fstat=0.4)"]
+    assert list(arrays["rf_label"]) == ["coulomb(mu=0.3)", "coulomb(mu=0.33)", fr[2].label]
+    assert fr[2].label.startswith("linear(fkin=0.3, flin1=0.1, sabsh1=300")
     assert contact_model(arrays, 0.33).mu_nodes[-1] == 1.3
     assert contact_model(arrays, 0.1 + 0.2).mu_nodes[-1] == 0.3          # 0.30000000000000004
     assert contact_model(arrays, Law()).mu_nodes[-1] == 2.3
-    assert contact_model(arrays, fr[2]).mu_nodes[-1] == 2.3
+    assert contact_model(arrays, fr[2]).mu_nodes[1] == 2.3   # the stored curve (a falling law's tail node after it)
     with pytest.raises(ValueError, match=r"no friction curve for coulomb\(mu=0.34\)"):
         contact_model(arrays, 0.34)
     # an artifact of before (no rf_label): Coulomb curves named by mu_values
@@ -116,6 +117,8 @@ def test_a_falling_law_curve_is_built_cached_and_selected_unflattened(static, tm
     cm = contact_model(arrays, f)
     peak = int(np.argmax(cm.mu_nodes))
     assert 0 < peak < len(cm.mu_nodes) - 1 and cm.mu_nodes[-1] < cm.mu_nodes[peak] - 0.02
-    assert cm.mu_nodes[peak] <= f.mu + 1e-9 and np.array_equal(cm.mu_nodes, ref.mu_rf)
+    n = len(ref.mu_rf)                        # contact_model appends the law's tail node (s = inf) after the curve
+    assert cm.mu_nodes[peak] <= f.mu + 1e-9 and np.array_equal(cm.mu_nodes[:n], ref.mu_rf)
+    assert len(cm.mu_nodes) == n + 1 and np.isinf(cm.s_nodes[-1]) and cm.mu_nodes[-1] == pytest.approx(0.14, rel=0.01)
     assert contact_model(arrays, preset("contact_tractcurv")).mu_nodes[-1] == cm.mu_nodes[-1]   # the law itself
     assert contact_model(arrays, 0.33).mu_nodes[-1] == pytest.approx(0.33, rel=1e-4)

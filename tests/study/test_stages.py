@@ -107,7 +107,7 @@ def test_contact_study_point_and_kalker_side_by_side(studies):
     ('kind = "maps"', "kind", "maps"),
     ("gamma_y_step = 0.0", "grid.gamma_y_step", "0.0"),
     ('cases = ["nowhere"]', "cases", "nowhere"),
-    ("mu_first = 0.12", "grid.mu_first", "0.12"),
+    ("mu_first = 1.2", "grid.mu_first", "1.2"),               # any mu in (0, 1] has its curve built
 ])
 def test_bad_definitions_are_named(studies, text, key, value):
     good = {"kind": 'kind = "map"', "gamma_y_step": "gamma_y_step = 0.002", "cases": 'cases = ["default"]',
