@@ -14,7 +14,6 @@ solve per creepage node, ~0.1-0.3 s), a value met before costs a file read.
 """
 from __future__ import annotations
 
-import functools
 import hashlib
 import logging
 import time
@@ -178,17 +177,9 @@ def compute_curve(p3, dx: float, dy: float, v: float, friction: Friction, E: flo
 
 
 def code_hash() -> str:
-    files = tuple(p for pattern in CURVE_CODE for p in sorted(paths.ROOT.glob(pattern)))
-    return _code_hash(tuple((p, p.stat().st_mtime_ns, p.stat().st_size) for p in files))
+    from .code_hash import code_hash as files_hash
 
-
-@functools.lru_cache(maxsize=8)
-def _code_hash(files: tuple) -> str:
-    h = hashlib.sha256()
-    for p, _, _ in files:
-        h.update(p.relative_to(paths.ROOT).as_posix().encode())
-        h.update(p.read_bytes())
-    return h.hexdigest()[:16]
+    return files_hash(CURVE_CODE)
 
 
 def contact_key(p3, dx: float, dy: float, v: float, E: float, nu: float) -> str:

@@ -31,6 +31,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from . import artifacts, paths
+from .code_hash import code_hash
 
 log = logging.getLogger("pipeline.greens")
 
@@ -46,13 +47,8 @@ def kernel_config(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, gri
     """Everything the kernel at |y_r| depends on (the cache key is its hash).  grid: n_t, n_lags,
     f_max, f_taper (pipeline.greens_stage's RAIL_* settings)."""
     mesh = paths.rail_dir(pr["name"]) / "section.msh"
-    code = hashlib.sha256()
-    for name in CODE:
-        p = paths.ROOT / name
-        if p.exists():
-            code.update(name.encode() + p.read_bytes())
     return {"rail": rail_hash, "mesh": hashlib.sha256(mesh.read_bytes()).hexdigest()[:16],
-            "code": code.hexdigest()[:16], "y_r_abs": round(abs(float(y_r)), 9), "v": float(v), "dt": float(dt),
+            "code": code_hash(CODE), "y_r_abs": round(abs(float(y_r)), 9), "v": float(v), "dt": float(dt),
             **{k: (int(x) if k.startswith("n_") else float(x)) for k, x in grid.items()}}
 
 

@@ -18,7 +18,6 @@ before); docs/validation/53_any_rail_point.md compares the two at a listed point
 """
 from __future__ import annotations
 
-import hashlib
 import logging
 import time
 from concurrent.futures import ThreadPoolExecutor
@@ -26,6 +25,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from . import artifacts, paths
+from .code_hash import code_hash
 
 log = logging.getLogger("pipeline.greens")
 
@@ -41,13 +41,6 @@ TABLE_CODE = ["solvers/rail_surface.py"]
 KERNEL_CODE = ["pipeline/rail_surface.py", "solvers/moving_static.py"]
 
 
-def _code_hash(names) -> str:
-    h = hashlib.sha256()
-    for name in names:
-        h.update(name.encode() + (paths.ROOT / name).read_bytes())
-    return h.hexdigest()[:16]
-
-
 def table_config(pr: dict, rail_hash: str, dt: float, grid: dict) -> dict:
     """What the surface wave table depends on: the rail kernel's key without the point, the speed
     and the lags (``rail_kernel.kernel_config``), plus this module's settings and code."""
@@ -56,7 +49,7 @@ def table_config(pr: dict, rail_hash: str, dt: float, grid: dict) -> dict:
     cfg = kernel_config(pr, rail_hash, 0.0, 1.0, dt, grid)
     for k in ("y_r_abs", "v", "n_lags"):
         cfg.pop(k, None)
-    cfg["surface"] = {"spacing": SPACING, "k_local": K_LOCAL, "code": _code_hash(TABLE_CODE), "version": TABLE_VERSION}
+    cfg["surface"] = {"spacing": SPACING, "k_local": K_LOCAL, "code": code_hash(TABLE_CODE), "version": TABLE_VERSION}
     return cfg
 
 
@@ -140,7 +133,7 @@ def surface_kernel(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, gr
 
     rail_mesh(pr)
     cfg = dict(kernel_config(pr, rail_hash, y_r, v, dt, grid), surface=table_config(pr, rail_hash, dt, grid)["surface"],
-               surface_kernel=_code_hash(KERNEL_CODE))
+               surface_kernel=code_hash(KERNEL_CODE))
     path = kernel_path(pr["name"], cfg)
     try:
         arrays, _ = artifacts.load_npz(path, KIND_KERNEL, cfg)

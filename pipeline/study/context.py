@@ -8,15 +8,13 @@ when any of it changes.
 """
 from __future__ import annotations
 
-import ast
-import functools
-import hashlib
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from .. import artifacts, paths
+from ..code_hash import code_hash as _code_hash
 from ..config import config_hash
 
 # the code a study row depends on (hashed into its inputs); missing files are skipped
@@ -27,34 +25,9 @@ CODE = ["solvers/interaction.py", "solvers/timeloop/*.py", "solvers/green.py", "
         "solvers/receptance.py", "solvers/constants.py"]
 
 
-def _code_text(path) -> bytes:
-    """The code of a Python file without its docstrings and comments (its AST), so that editing
-    documentation does not make a study's results stale; other files as they are."""
-    if path.suffix != ".py":
-        return path.read_bytes()
-    tree = ast.parse(path.read_text())
-    for node in ast.walk(tree):
-        body = getattr(node, "body", None)
-        if isinstance(body, list) and body and isinstance(body[0], ast.Expr) \
-                and isinstance(body[0].value, ast.Constant) and isinstance(body[0].value.value, str):
-            node.body = body[1:] or [ast.Pass()]
-    return ast.dump(tree).encode()
-
-
 def code_hash() -> str:
-    """Hash of the code a study row depends on; computed once per process for the same files
-    (path, size and modification time), since parsing them costs ~0.3 s per call."""
-    files = [p for pattern in CODE for p in sorted(paths.ROOT.glob(pattern))]
-    return _code_hash(tuple((p, p.stat().st_mtime_ns, p.stat().st_size) for p in files))
-
-
-@functools.lru_cache(maxsize=8)
-def _code_hash(files: tuple) -> str:
-    h = hashlib.sha256()
-    for p, _, _ in files:
-        h.update(p.relative_to(paths.ROOT).as_posix().encode())
-        h.update(_code_text(p))
-    return h.hexdigest()[:16]
+    """Hash of the code a study row depends on (its syntax trees: documentation does not count)."""
+    return _code_hash(CODE, ignore_docs=True)
 
 
 @dataclass(frozen=True)

@@ -113,6 +113,22 @@ def rf_curve(p3, dx, dy, v, law_or_mu, E=210e9, nu=0.3, *, gammas=None, n_bend=1
     return _law_curve(p3, dx, dy, v, law, E, nu, gammas, n_bend, n_fall)
 
 
+def _steady_ramp(p3, dx, dy, v, law_or_mu, E, nu, gam, F3):
+    """Steady TANG at the creepages ``gam`` in increasing order, each warm-started from the one
+    before (the slow ramp [4.36] as steady states): (F2/F3, F1/F3, stick fraction) per node."""
+    mu_rf, f1, stick = np.zeros(len(gam)), np.zeros(len(gam)), np.zeros(len(gam))
+    stick[0] = 1.0
+    warm = None
+    for i, g in enumerate(gam):
+        if g == 0.0:
+            continue
+        sol = tang_steady(p3, dx, dy, v, law_or_mu, gamma_y=-g, E=E, nu=nu, warm=warm, full_output=False)
+        warm = sol
+        mu_rf[i], f1[i] = sol.F2 / F3, sol.F1 / F3
+        stick[i] = sol.stick.sum() / max((p3 > 0).sum(), 1)
+    return mu_rf, f1, stick
+
+
 def _law_curve(p3, dx, dy, v, law, E, nu, gammas, n_bend, n_fall) -> RFCurve:
     """rf_curve of a slip-speed dependent law: nodes to the peak and along the falling branch."""
     p3 = np.asarray(p3, dtype=float)
@@ -121,16 +137,7 @@ def _law_curve(p3, dx, dy, v, law, E, nu, gammas, n_bend, n_fall) -> RFCurve:
     mu0 = law.mu_static
     g_sat = 3.0 * mu0 * F3 / k
     gam = creepage_nodes(g_sat, n_bend, n_fall) if gammas is None else np.sort(np.abs(gammas))
-    mu_rf, f1, stick = np.zeros(len(gam)), np.zeros(len(gam)), np.zeros(len(gam))
-    stick[0] = 1.0
-    warm = None
-    for i, g in enumerate(gam):
-        if g == 0.0:
-            continue
-        sol = tang_steady(p3, dx, dy, v, law, gamma_y=-g, E=E, nu=nu, warm=warm, full_output=False)
-        warm = sol
-        mu_rf[i], f1[i] = sol.F2 / F3, sol.F1 / F3
-        stick[i] = sol.stick.sum() / max((p3 > 0).sum(), 1)
+    mu_rf, f1, stick = _steady_ramp(p3, dx, dy, v, law, E, nu, gam, F3)
     s = gam * v
     return RFCurve(s, mu_rf, monotone_slopes(s, mu_rf, end_slope=None), gam, f1, stick, float(mu0), float(v),
                    float(g_sat), float(k), law)
@@ -143,16 +150,7 @@ def _coulomb_curve(p3, dx, dy, v, mu, E, nu, gammas, n_bend, n_plateau, law) -> 
     k = creep_stiffness(p3, dx, dy, v, E, nu)
     g_sat = 3.0 * mu * F3 / k
     gam = creepage_nodes(g_sat, n_bend, n_plateau) if gammas is None else np.sort(np.abs(gammas))
-    mu_rf, f1, stick = np.zeros(len(gam)), np.zeros(len(gam)), np.zeros(len(gam))
-    stick[0] = 1.0
-    warm = None
-    for i, g in enumerate(gam):
-        if g == 0.0:
-            continue
-        sol = tang_steady(p3, dx, dy, v, mu, gamma_y=-g, E=E, nu=nu, warm=warm, full_output=False)
-        warm = sol
-        mu_rf[i], f1[i] = sol.F2 / F3, sol.F1 / F3
-        stick[i] = sol.stick.sum() / max((p3 > 0).sum(), 1)
+    mu_rf, f1, stick = _steady_ramp(p3, dx, dy, v, mu, E, nu, gam, F3)
     mu_rf = np.maximum.accumulate(mu_rf)        # guard: rounding must not break monotonicity
     s = gam * v
     return RFCurve(s, mu_rf, monotone_slopes(s, mu_rf), gam, f1, stick, float(mu), float(v), float(g_sat), float(k),

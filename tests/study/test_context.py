@@ -1,6 +1,6 @@
 """pipeline/study_context.py: the code hash behind a study row's inputs ignores documentation
 (docstrings, comments) and follows the code."""
-from pipeline.study.context import _code_text
+from pipeline.code_hash import code_text as _code_text
 
 
 def test_code_text_ignores_documentation_only(tmp_path):
