@@ -5,7 +5,8 @@ Checked: the wheel and rail files (schema and geometry), the case file (schema),
 (law, parameters or preset: ``pipeline.friction.resolve_friction``), the profiles it names (in
 the case, the wheel or the rail file: present, readable, of the right kind), the rigid contact
 of the profiles at its wheelset offset (flange contact is refused, as the contact stage does),
-the rail model's head node for its contact point (as the greens stage does) and its time step
+the rail model's head node for its contact point (as the greens stage does), the second contact
+zone of a two-point case (``pipeline.second_point.second_zone``) and its time step
 (``time_step_problem``).  Notes (not errors): a positive lateral creepage (over-radial).
 """
 from __future__ import annotations
@@ -86,6 +87,10 @@ def run_check(case: str, wheel: str | None, rail: str | None) -> list[str]:
     geo = contact_geometry(case, c, pw, pr)                 # the rigid contact search (flange contact refused)
     where = f"case '{case}', dy_WR = {1e3 * c['contact']['dy_wr']:+.1f} mm (y^W = {1e3 * geo.contact.y_wheel:+.2f} mm)"
     rail_point(c["rail"], pr, geo.contact.y_rail, where)
+    if c["contact"].get("points", 1) == 2:                  # the second zone, as the contact stage asks for it
+        from .second_point import second_zone
+
+        second_zone(case, c, geo)
     problem = time_step_problem(c, c["rail"])
     if problem:
         raise ConfigError(str(case_path), [("time.dt", c["time"]["dt"], problem)])

@@ -50,12 +50,16 @@ class SecondZone:
 
 def second_zone(name: str, c: dict, geo) -> SecondZone:
     """The case's second contact zone; a one-line ConfigError when the profiles have none or the
-    case asks for a contact model the two-point loop does not have (Kalker's TANG, per-step NORM)."""
+    case asks for what the two-point loop does not have (Kalker's TANG, per-step NORM, spin)."""
     rc = geo.contact
     if c["contact"]["model"] != "point" or c["contact"]["normal"] != "table":
         raise ConfigError(str(paths.case_file(name)), detail=(
             f"contact.points = 2 needs contact.model = \"point\" and contact.normal = \"table\" (the two-point loop "
             f"has the point-contact model with NORM tables), got {c['contact']['model']!r}, {c['contact']['normal']!r}"))
+    if c["kinematics"].get("spin", 0.0):
+        raise ConfigError(str(paths.case_file(name)), detail=(
+            f"contact.points = 2 with kinematics.spin = {c['kinematics']['spin']:g} 1/m: the two-point loop has no "
+            f"spin (each patch's spin would follow from its own contact angle); use points = 1 or spin = 0"))
     if rc.second is None or not np.isfinite(rc.second[0]):
         raise ConfigError(str(paths.case_file(name)), detail=(
             f"contact.points = 2: case '{name}', dy_WR = {1e3 * c['contact']['dy_wr']:+.2f} mm: the profiles have no "
