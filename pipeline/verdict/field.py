@@ -214,15 +214,33 @@ def tally(verdicts: dict) -> str:
             "read does not state); the issue asks for at least five such observations, so this table does not yet "
             f"meet that line.  Occurrence: the tool's verdict agrees with the source in {agree} of {n} observations.")
     if missed:
+        loud = sorted({m[1] for m, v in verdicts.items() if v and "error" not in v and v["squeals"]})
         text += (f"  Where the source reports squeal, the tool's vehicle is quiet at mu = 0.35 at R = "
-                 f"{', '.join(f'{r:g}' for r in sorted(missed))} m: in this model the metro squeals only on the "
-                 "tightest radii (docs/validation/91_verdict.md), the curving wheelset's longitudinal creepage keeping "
-                 "its inner leading wheel stable above; a source's other vehicle, wheel, profiles or friction are not "
-                 "modelled.")
+                 f"{', '.join(f'{r:g}' for r in sorted(missed))} m; it squeals here only at R = "
+                 f"{', '.join(f'{r:g}' for r in loud) or 'none'} m (the radius study: docs/validation/91_verdict.md).  "
+                 "The inner leading wheel's creepages (gamma_x, gamma_y of a1i, from each curve's verdict.csv) "
+                 f"show why: {creep_text(verdicts)}; where it is quiet, its longitudinal creepage is large beside "
+                 "the lateral one or the lateral creepage is small.  A source's other "
+                 "vehicle, wheel, profiles, track or friction are not modelled.")
     if extra:
         text += f"  The tool squeals where the source expects none at R = {', '.join(f'{r:g}' for r in sorted(extra))} m."
+    compared = [o["key"] for o in OBSERVATIONS if level_difference(o, verdicts.get(o["model"])).endswith("measured)")]
+    at_7p5 = [o["key"] for o in OBSERVATIONS if o.get("L_7p5") is not None]
+    text += (f"  Level: {len(compared)} of the {len(at_7p5)} A-weighted level(s) at 7.5 m ({', '.join(at_7p5)}) "
+             "compared with the tool's" + ("" if len(compared) == len(at_7p5) else
+                                           "; the others are where the tool's vehicle does not squeal") + ".")
     return text + ("  Frequency: where both squeal the tool's frequency is the C20 wheel's mode, not the source "
                    "vehicle's wheel.")
+
+
+def creep_text(verdicts: dict) -> str:
+    """The a1i creepages of the metro's configurations, by radius: 'R = 25 m: +0.023 / -0.059 (quiet)'."""
+    seen = {}
+    for m, v in sorted(verdicts.items(), key=lambda kv: kv[0][1]):
+        if m[0] == "r150" and v and v.get("creep_a1i") and m[1] not in seen:
+            gx, gy = v["creep_a1i"]
+            seen[m[1]] = f"R = {m[1]:g} m: {gx:+.4f} / {gy:+.4f} ({'squeals' if v['squeals'] else 'quiet'})"
+    return "; ".join(seen.values())
 
 
 def verdict_of(run: dict) -> dict:
@@ -233,7 +251,8 @@ def verdict_of(run: dict) -> dict:
     return {"V": run["V"], "squeals": loud is not None, "wheel": loud["wheel"] if loud else "",
             "f": loud["f_squeal"] if loud else math.nan, "mode": loud["mode"] if loud else "",
             "L_pA": loud["L_pA"] if loud else math.nan,
-            "screen": any(math.isfinite(r["screen_sigma"]) for r in rows)}
+            "screen": any(math.isfinite(r["screen_sigma"]) for r in rows),
+            "creep_a1i": next(((r["gamma_x"], r["gamma_y"]) for r in rows if r["wheel"] == "a1i"), None)}
 
 
 def main(argv=None) -> int:
@@ -292,8 +311,9 @@ NOTES = """What the comparison can and cannot say:
   from the wheel (130 dB, unweighted), increases over rolling noise and reductions by a measure are near-field,
   of another metric or relative, and are not converted.  At Melsele the measured 80.5 dB(A) is a tram on resilient
   wheels over a highly damped rail fastening, squealing in rare passages; the tool's vehicle has solid C20 wheels
-  on an ordinary track, so its level is expected above the measured one (the source's own figure for a classical
-  track, 102.7 dB(A), is a calculation, not a measurement, and is not compared).
+  on an ordinary track, so a level difference there would reflect wheel and track as much as the model (the
+  source's own figure for a classical track, 102.7 dB(A), is a calculation, not a measurement, and is not
+  compared).
 * Mechanism: squeal from longitudinal creepage on large radii (ore wagons at 1000 m) is outside what the
   lateral-creepage screen looks for.
 """
