@@ -8,7 +8,10 @@ base curve (its vehicle, rail and friction), radius (m) and speed (km/h; None: t
 ``pipeline.verdict.radius``, whose cant rule holds for all) -- a verdict of the curve stage there.
 The project ships a metro vehicle on the C20 wheel and a freight bogie (Y25, 920 mm wheel, 60E1): the
 heavy-haul observation is compared with the freight bogie, every other one with the metro vehicle
-(trams and other cars differ in wheel, bogie and load: stated).
+(trams and other cars differ in wheel, bogie and load: stated).  Each row says which of radius, speed,
+squeal frequency and level (with distance and metric) its source states ('stated': R V f L); a measured
+level is set beside the tool's L_pA at 7.5 m only when the source gives an A-weighted level at 7.5 m
+from the track (``L_7p5``), with no conversion; other distances and metrics are not converted.
 
     .venv/bin/python -m pipeline.verdict.field     # runs (or reuses) the verdicts, writes 92_field.md
 """
