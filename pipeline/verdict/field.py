@@ -8,7 +8,10 @@ base curve (its vehicle, rail and friction), radius (m) and speed (km/h; None: t
 ``pipeline.verdict.radius``, whose cant rule holds for all) -- a verdict of the curve stage there.
 The project ships a metro vehicle on the C20 wheel and a freight bogie (Y25, 920 mm wheel, 60E1): the
 heavy-haul observation is compared with the freight bogie, every other one with the metro vehicle
-(trams and other cars differ in wheel, bogie and load: stated).
+(trams and other cars differ in wheel, bogie and load: stated).  Each row says which of radius, speed,
+squeal frequency and level (with distance and metric) its source states ('stated': R V f L); a measured
+level is set beside the tool's L_pA at 7.5 m only when the source gives an A-weighted level at 7.5 m
+from the track (``L_7p5``), with no conversion; other distances and metrics are not converted.
 
     .venv/bin/python -m pipeline.verdict.field     # runs (or reuses) the verdicts, writes 92_field.md
 """
@@ -16,72 +19,120 @@ from __future__ import annotations
 
 import math
 
-# one dict per observation: source (author, year, journal/report, address), vehicle, radius_m, speed_kmh,
-# f_hz (text), level (text, with distance and metric), note, squeal (the source reports squeal: True; expects none:
-# False), model = (base curve, radius_m, speed_kmh or None) or None
+# one dict per observation: source (author, year, journal/report, address; a value quoted from a secondary source says
+# so), vehicle, radius_m and speed_kmh (number, or text for a range or class), f_hz (text), level (text: as the source
+# gives it, with its distance and metric), L_7p5 (an A-weighted level the source states at 7.5 m from the track, dB(A),
+# else None: the only level compared with the tool's), squeal (the source reports squeal: True; expects none: False),
+# model = (base curve, radius_m, speed_kmh or None) or None
 OBSERVATIONS = [
-    {"key": "stockholm", "squeal": True,
-     "source": "'Monitoring of rail corrugation growth due to irregular wear on a railway metro curve', journal "
-               "article, 2009, Chalmers (research.chalmers.se/publication/111664)",
-     "vehicle": "Stockholm metro (C20 wheels: Zenzerovic 2014, sec. 4.1.2)", "radius_m": 120.0, "speed_kmh": 30.0,
-     "f_hz": None, "level": None,
-     "note": "in dry weather the pass-by discomfort is linked to the occurrence of wheel squeal; train speeds about "
-             "30 km/h", "model": ("r150", 120.0, 30.0)},
+    {"key": "melsele", "squeal": True,
+     "source": "APT (rail fastening supplier), reference 'Tram return loop in Melsele, Belgium' "
+               "(aptrail.com/references/be-melsele.asp), vendor's account of its own product",
+     "vehicle": "Siemens tram with resilient wheels, on the damped APT-ST fastening", "radius_m": 25.0,
+     "speed_kmh": "10-15", "f_hz": None,
+     "level": "80.5 dB(A), 'measured maximum squeal noise' at 7.5 m from the track, 10-15 km/h (rare passages; most "
+              "did not squeal); 102.7 dB(A) at 7.5 m 'calculated' by the source for a classical track (not measured)",
+     "L_7p5": 80.5, "note": "return loop, R = 25 m, track embedded in pavement on a concrete slab",
+     "model": ("r150", 25.0, 12.5)},
+    {"key": "stuva", "squeal": True,
+     "source": "STUVA for the Umweltbundesamt, 'Kurvenquietschen im Nahverkehr - Schall 03' (project record, "
+               "md.tb.umwelt.info; report: F. Krueger, STUVA 1994, FE-Nr. 70413/93, as listed by de.wikipedia "
+               "'Kurvenquietschen')",
+     "vehicle": "urban rail (Nahverkehr): 29 curves in 11 cities", "radius_m": "25-50", "speed_kmh": None,
+     "f_hz": None,
+     "level": "LAmax at 7.5 m (LAm,N at 25 m) measured; mean maximum increase by squeal over rolling noise 8 dB(A) for "
+              "R = 25-50 m (4.6 for 51-100 m, 1.6 for 101-200 m)",
+     "L_7p5": None, "note": "an increase over rolling noise, not the squeal level itself", "model": ("r150", 50.0, None)},
+    {"key": "wiki-tram", "squeal": True,
+     "source": "German Wikipedia, 'Kurvenquietschen' (secondary source; its literature: Hubner 1973, dissertation "
+               "TU Berlin; Lipinsky 1984), as stored at de.zxc.wiki/wiki/Kurvenquietschen",
+     "vehicle": "tram", "radius_m": None, "speed_kmh": "14-28", "f_hz": "1572-1578",
+     "level": "130 dB(A) at the inner wheel rim, axial direction, 20 km/h (85 dB(A) at the outer wheel rim)",
+     "L_7p5": None, "note": "about 1578 Hz at 14 km/h and 1572 Hz at 28 km/h; main range 1500-6000 Hz",
+     "model": ("r150", 50.0, 15.0)},
+    {"key": "tram-clda", "squeal": True,
+     "source": "Shock and Vibration 2014, article 473720, constrained layer damper for a tram (abstract, "
+               "hindawi.com/journals/sv/2014/473720)",
+     "vehicle": "tram with resilient wheels", "radius_m": None, "speed_kmh": None, "f_hz": "780-800",
+     "level": None, "L_7p5": None,
+     "note": "squeal in the small-radius curves of the line, reduced by tuned dampers on the wheels",
+     "model": ("r150", 50.0, None)},
     {"key": "rudd", "squeal": True,
      "source": "Rudd, 1976, 'Wheel/rail noise - Part II: Wheel squeal', J. Sound Vib. 46(3) 381-394 (as cited by "
                "Zenzerovic 2014, ch. 2)",
      "vehicle": "rail transit cars", "radius_m": None, "speed_kmh": None, "f_hz": None,
-     "level": "up to 130 dB at 0.9 m from the wheel (sound pressure level)",
+     "level": "up to 130 dB at 0.9 m from the wheel (sound pressure level, unweighted)", "L_7p5": None,
      "note": "squeal expected where curve radius / bogie wheelbase < 100", "model": ("r150", 150.0, 50.0)},
-    {"key": "tram-clda", "squeal": True,
-     "source": "Shock and Vibration 2014, article 473720, constrained layer damper for a tram "
-               "(hindawi.com/journals/sv/2014/473720)",
-     "vehicle": "tram with resilient wheels", "radius_m": None, "speed_kmh": None, "f_hz": "780-800",
-     "level": None, "note": "squeal in the small-radius curves of the line, reduced by tuned dampers on the wheels",
-     "model": ("r150", 50.0, None)},
-    {"key": "wiki-tram", "squeal": True,
-     "source": "German Wikipedia, 'Kurvenquietschen' (secondary source; its literature: Hubner 1973, dissertation "
-               "TU Berlin; Lipinsky), as stored at de.zxc.wiki/wiki/Kurvenquietschen",
-     "vehicle": "tram", "radius_m": None, "speed_kmh": 14.0, "f_hz": "1572-1578",
-     "level": "130 dB(A) at the inner wheel rim, axial direction, 20 km/h (85 dB(A) at the outer wheel rim)",
-     "note": "about 1578 Hz at 14 km/h and 1572 Hz at 28 km/h; main range 1500-6000 Hz",
-     "model": ("r150", 50.0, 15.0)},
+    {"key": "staiano", "squeal": True,
+     "source": "Staiano & Sastry, 1990, 'Control of wheel squeal noise in rail transit cars', Transportation Research "
+               "Record 1255, 23-35 (abstract, trid.trb.org/View/312963)",
+     "vehicle": "Washington Metro transit cars (yard curves)", "radius_m": None, "speed_kmh": None, "f_hz": None,
+     "level": "23 dB(A) lower with a rail-head facing, squeal eliminated (first week); distance n/s", "L_7p5": None,
+     "note": "small-radius yard curves; water on the rails stopped the squeal", "model": ("r150", 75.0, None)},
+    {"key": "stockholm", "squeal": True,
+     "source": "'Monitoring of rail corrugation growth due to irregular wear on a railway metro curve', journal "
+               "article, 2009, Chalmers (research.chalmers.se/publication/111664)",
+     "vehicle": "Stockholm metro (C20 wheels: Zenzerovic 2014, sec. 4.1.2)", "radius_m": 120.0, "speed_kmh": 30.0,
+     "f_hz": None, "level": None, "L_7p5": None,
+     "note": "in dry weather the pass-by discomfort is linked to the occurrence of wheel squeal; train speeds about "
+             "30 km/h", "model": ("r150", 120.0, 30.0)},
+    {"key": "thompson", "squeal": True,
+     "source": "Thompson, 2009, Railway Noise and Vibration, Elsevier, ch. 9 (as cited by Zenzerovic 2014, ch. 2)",
+     "vehicle": "guideline (all vehicles)", "radius_m": 200.0, "speed_kmh": None, "f_hz": "250-5000 (main tones)",
+     "level": None, "L_7p5": None, "note": "R <= 200 m: squeal common; 200-500 m: sporadic; >= 500 m: mostly none",
+     "model": ("r150", 200.0, None)},
     {"key": "meehan", "squeal": True,
      "source": "Meehan & Liu, 2018, 'Modelling and mitigation of wheel squeal noise amplitude', J. Sound Vib. 413 "
-               "144-158",
+               "144-158 (abstract)",
      "vehicle": "in-service trains (field case study)", "radius_m": 300.0, "speed_kmh": None, "f_hz": None,
-     "level": None, "note": "many field recordings of squeal on a 300 m curve; the level rises with the angle of "
-                            "attack", "model": ("r150", 300.0, None)},
+     "level": None, "L_7p5": None,
+     "note": "many field recordings of squeal on a 300 m curve; the level rises with the angle of attack",
+     "model": ("r150", 300.0, None)},
+    {"key": "verheijen", "squeal": False,
+     "source": "Verheijen & van Beek, 2019, 'Clarifications and refinements to squeal noise in CNOSSOS', "
+               "Inter-Noise 2019, 259(8) 1990-1997 (abstract)",
+     "vehicle": "trams", "radius_m": 200.0, "speed_kmh": None, "f_hz": None, "level": None, "L_7p5": None,
+     "note": "trams do not tend to squeal in curves with radii over 200 m", "model": ("r150", 300.0, None)},
     {"key": "jrc2012", "squeal": False,
      "source": "Joint Rail Conference 2012 (ASME), proceedings abstract "
                "(asmedigitalcollection.asme.org/JRC/proceedings-abstract/JRC2012/44656/161)",
-     "vehicle": "n/s", "radius_m": 300.0, "speed_kmh": None, "f_hz": None, "level": None,
+     "vehicle": "n/s", "radius_m": 300.0, "speed_kmh": None, "f_hz": None, "level": None, "L_7p5": None,
      "note": "a threshold lateral creepage of 0.0045 is suggested; curves of radius above 300 m should not squeal",
      "model": ("r150", 500.0, None)},
     {"key": "fourie", "squeal": True,
      "source": "'Experimental characterisation of railway wheel squeal occurring in large-radius curves', 2016, "
                "TRID record 1416976 (trid.trb.org/view/1416976)",
      "vehicle": "heavy-haul ore wagons (trailing inner wheels)", "radius_m": 1000.0, "speed_kmh": None,
-     "f_hz": None, "level": None,
+     "f_hz": None, "level": None, "L_7p5": None,
      "note": "squealing wheels under predominantly longitudinal creepage (> 1 %), little or no lateral creepage",
      "model": ("y25_r300", 1000.0, None)},
-    {"key": "thompson", "squeal": True,
-     "source": "Thompson, 2009, Railway Noise and Vibration, Elsevier, ch. 9 (as cited by Zenzerovic 2014, ch. 2)",
-     "vehicle": "guideline (all vehicles)", "radius_m": 200.0, "speed_kmh": None, "f_hz": "250-5000 (main tones)",
-     "level": None, "note": "R <= 200 m: squeal common; 200-500 m: sporadic; >= 500 m: mostly none",
-     "model": ("r150", 200.0, None)},
-    {"key": "verheijen", "squeal": False,
-     "source": "Verheijen & van Beek, 2019, 'Clarifications and refinements to squeal noise in CNOSSOS', "
-               "Inter-Noise 2019, 259(8) 1990-1997",
-     "vehicle": "trams", "radius_m": 200.0, "speed_kmh": None, "f_hz": None, "level": None,
-     "note": "trams do not tend to squeal in curves with radii over 200 m", "model": ("r150", 300.0, None)},
-    {"key": "staiano", "squeal": True,
-     "source": "Staiano & Sastry, 1990, 'Control of wheel squeal noise in rail transit cars', Transportation Research "
-               "Record 1255, 23-35",
-     "vehicle": "Washington Metro transit cars (yard curves)", "radius_m": None, "speed_kmh": None, "f_hz": None,
-     "level": "23 dB(A) lower with a rail-head facing, squeal eliminated (first week)",
-     "note": "small-radius yard curves; water on the rails stopped the squeal", "model": ("r150", 75.0, None)},
 ]
+
+# what the issue asks each observation to state
+STATED = (("radius_m", "R"), ("speed_kmh", "V"), ("f_hz", "f"), ("level", "L"))
+
+
+def stated(o: dict) -> str:
+    """Which of radius, speed, squeal frequency and level (with distance and metric) the source states: 'R V f L',
+    a dash for each it does not."""
+    return " ".join(tag if o.get(k) is not None else "-" for k, tag in STATED)
+
+
+def complete(o: dict) -> bool:
+    """The observation states all four (its level at a stated distance)."""
+    return "-" not in stated(o).split()
+
+
+def level_difference(o: dict, v: dict | None) -> str:
+    """The tool's L_pA at 7.5 m minus the source's A-weighted level at 7.5 m, where both exist; levels at other
+    distances or in other metrics are not converted (said so)."""
+    if not o.get("level"):
+        return "-"
+    if o.get("L_7p5") is None:
+        return "not compared (no A-weighted level at 7.5 m from the track)"
+    if not v or "error" in v or not v["squeals"] or not math.isfinite(v["L_pA"]):
+        return "not compared (the tool does not squeal there)"
+    return f"{v['L_pA'] - o['L_7p5']:+.1f} dB (tool - measured)"
 
 
 def vehicle_of(base: str) -> str:
@@ -101,9 +152,10 @@ def fmt(x, spec=".0f", unit=""):
 
 def table_markdown(verdicts: dict) -> str:
     """The side-by-side table; ``verdicts``: model tuple -> {'squeals', 'wheel', 'f', 'mode', 'L_pA', 'screen'}."""
-    rows = ["| source | vehicle | R (m) | V (km/h) | measured f (Hz) | measured level | tool: closest configuration | "
-            "tool: squeals (wheel) | tool f (Hz), mode | tool L_pA at 7.5 m | difference |",
-            "|" + "---|" * 11]
+    rows = ["| source | vehicle | R (m) | V (km/h) | measured f (Hz) | measured level (distance, metric) | stated | "
+            "tool: closest configuration | tool: squeals (wheel) | tool f (Hz), mode | tool L_pA at 7.5 m | "
+            "level: tool - measured | difference |",
+            "|" + "---|" * 13]
     for o in OBSERVATIONS:
         v = verdicts.get(o["model"]) if o["model"] else None
         speed = f"{v['V']:g}" if v and "V" in v else f"{o['model'][2]:g}" if o["model"] and o["model"][2] else "design"
@@ -119,8 +171,8 @@ def table_markdown(verdicts: dict) -> str:
                     f"{v['f']:.0f}, {v['mode']}" if v["squeals"] else "-",
                     f"{v['L_pA']:.1f} dB(A)" if v["squeals"] and math.isfinite(v["L_pA"]) else "-")
         rows.append(f"| {o['source']} | {o['vehicle']} | {fmt(o['radius_m'])} | {fmt(o['speed_kmh'])} | "
-                    f"{fmt(o['f_hz'])} | {fmt(o['level'])} | {conf} | {tool[0]} | {tool[1]} | {tool[2]} | "
-                    f"{difference(o, v)} |")
+                    f"{fmt(o['f_hz'])} | {fmt(o['level'])} | {stated(o)} | {conf} | {tool[0]} | {tool[1]} | "
+                    f"{tool[2]} | {level_difference(o, v)} | {difference(o, v)} |")
     return "\n".join(rows)
 
 
@@ -159,17 +211,39 @@ def tally(verdicts: dict) -> str:
             missed.add(o["model"][1])
         if v["squeals"] and not o["squeal"]:
             extra.add(o["model"][1])
-    text = f"Occurrence: the tool's verdict agrees with the source in {agree} of {n} observations."
+    full = sum(complete(o) for o in OBSERVATIONS)
+    text = (f"Completeness: {full} of {len(OBSERVATIONS)} observations state all of radius, speed, squeal frequency "
+            "and level with its distance and metric (column 'stated': R V f L, a dash for what the text that could be "
+            "read does not state); the issue asks for at least five such observations, so this table does not yet "
+            f"meet that line.  Occurrence: the tool's verdict agrees with the source in {agree} of {n} observations.")
     if missed:
+        loud = sorted({m[1] for m, v in verdicts.items() if v and "error" not in v and v["squeals"]})
         text += (f"  Where the source reports squeal, the tool's vehicle is quiet at mu = 0.35 at R = "
-                 f"{', '.join(f'{r:g}' for r in sorted(missed))} m: in this model the metro squeals only on the "
-                 "tightest radii (docs/validation/91_verdict.md), the curving wheelset's longitudinal creepage keeping "
-                 "its inner leading wheel stable above; a source's other vehicle, wheel, profiles or friction are not "
-                 "modelled.")
+                 f"{', '.join(f'{r:g}' for r in sorted(missed))} m; it squeals here only at R = "
+                 f"{', '.join(f'{r:g}' for r in loud) or 'none'} m (the radius study: docs/validation/91_verdict.md).  "
+                 "The inner leading wheel's creepages (gamma_x, gamma_y of a1i, from each curve's verdict.csv) "
+                 f"show why: {creep_text(verdicts)}; where it is quiet, its longitudinal creepage is large beside "
+                 "the lateral one or the lateral creepage is small.  A source's other "
+                 "vehicle, wheel, profiles, track or friction are not modelled.")
     if extra:
         text += f"  The tool squeals where the source expects none at R = {', '.join(f'{r:g}' for r in sorted(extra))} m."
+    compared = [o["key"] for o in OBSERVATIONS if level_difference(o, verdicts.get(o["model"])).endswith("measured)")]
+    at_7p5 = [o["key"] for o in OBSERVATIONS if o.get("L_7p5") is not None]
+    text += (f"  Level: {len(compared)} of the {len(at_7p5)} A-weighted level(s) at 7.5 m ({', '.join(at_7p5)}) "
+             "compared with the tool's" + ("" if len(compared) == len(at_7p5) else
+                                           "; the others are where the tool's vehicle does not squeal") + ".")
     return text + ("  Frequency: where both squeal the tool's frequency is the C20 wheel's mode, not the source "
                    "vehicle's wheel.")
+
+
+def creep_text(verdicts: dict) -> str:
+    """The a1i creepages of the metro's configurations, by radius: 'R = 25 m: +0.023 / -0.059 (quiet)'."""
+    seen = {}
+    for m, v in sorted(verdicts.items(), key=lambda kv: kv[0][1]):
+        if m[0] == "r150" and v and v.get("creep_a1i") and m[1] not in seen:
+            gx, gy = v["creep_a1i"]
+            seen[m[1]] = f"R = {m[1]:g} m: {gx:+.4f} / {gy:+.4f} ({'squeals' if v['squeals'] else 'quiet'})"
+    return "; ".join(seen.values())
 
 
 def verdict_of(run: dict) -> dict:
@@ -180,7 +254,8 @@ def verdict_of(run: dict) -> dict:
     return {"V": run["V"], "squeals": loud is not None, "wheel": loud["wheel"] if loud else "",
             "f": loud["f_squeal"] if loud else math.nan, "mode": loud["mode"] if loud else "",
             "L_pA": loud["L_pA"] if loud else math.nan,
-            "screen": any(math.isfinite(r["screen_sigma"]) for r in rows)}
+            "screen": any(math.isfinite(r["screen_sigma"]) for r in rows),
+            "creep_a1i": next(((r["gamma_x"], r["gamma_y"]) for r in rows if r["wheel"] == "a1i"), None)}
 
 
 def main(argv=None) -> int:
@@ -224,13 +299,24 @@ def main(argv=None) -> int:
 
 NOTES = """What the comparison can and cannot say:
 
+* Sources: only what the stored text of each source (abstracts, project records, a vendor's reference page, an
+  encyclopedia entry) states is entered; the field papers that tabulate all four quantities (e.g. Vincent et al.
+  2006, J. Sound Vib. 293; the Sydney and Gothenburg campaigns; the UIC 'Combating curve squeal' field tests) could
+  not be read beyond their first page here, so none of their numbers is entered.
 * Occurrence: the sources that state where squeal is (not) expected (radius rules) are compared with the
   tool's verdict at those radii; one metro vehicle and one friction coefficient cannot stand for the spread of
   vehicles, wheel profiles and rail conditions behind those rules.
 * Frequency: the tool's squeal frequency is a C20 wheel mode; a tram's resilient wheel or another wheel
   squeals at its own modes, so a frequency difference there reflects the wheel, not the model.
-* Level: L_pA at 7.5 m and 1.2 m (ISO 3095 position) of the squealing wheel alone; levels measured at other
-  distances (0.9 m from the wheel) or as reductions by a measure are not converted.
+* Level: the tool's L_pA is that of the squealing wheel alone at 7.5 m and 1.2 m (ISO 3095 position; rigid
+  ground, image source: `pipeline/listen_stage.py`).  It is compared only with an A-weighted level the source
+  states at 7.5 m from the track (Melsele), with no conversion; levels at the wheel rim (130 dB(A)) or at 0.9 m
+  from the wheel (130 dB, unweighted), increases over rolling noise and reductions by a measure are near-field,
+  of another metric or relative, and are not converted.  At Melsele the measured 80.5 dB(A) is a tram on resilient
+  wheels over a highly damped rail fastening, squealing in rare passages; the tool's vehicle has solid C20 wheels
+  on an ordinary track, so a level difference there would reflect wheel and track as much as the model (the
+  source's own figure for a classical track, 102.7 dB(A), is a calculation, not a measurement, and is not
+  compared).
 * Mechanism: squeal from longitudinal creepage on large radii (ore wagons at 1000 m) is outside what the
   lateral-creepage screen looks for.
 """
