@@ -38,8 +38,9 @@ class MimoState(NamedTuple):
     (output, component, position from the current block's start); X (2, P-1, 4, B+1) the inputs'
     delay lines of spectra (Re F2, Im F2, Re F3, Im F3); live (2, P-1) int: 1 where that spectrum
     is not all zero; Y (4, B+1) work; seg (2, 2B) complex the inputs' last two blocks; tail (2, B,
-    2) the partitions' part of the current block's outputs; ctr (3,) int: step count, newest
-    delay-line slot, bit i set while input i's current segment holds a non-zero force."""
+    2) the partitions' part of the current block's outputs; ctr (4,) int: step count, newest
+    delay-line slot, bit i set while input i's current segment holds a non-zero force, ring
+    position; hbuf (2, 2B) the doubled ring of the gathered block's input (``MimoConvolver``)."""
     acc: np.ndarray
     X: np.ndarray
     live: np.ndarray
@@ -47,6 +48,7 @@ class MimoState(NamedTuple):
     seg: np.ndarray
     tail: np.ndarray
     ctr: np.ndarray
+    hbuf: np.ndarray
 
 
 class MimoConvolver(NamedTuple):
@@ -57,6 +59,7 @@ class MimoConvolver(NamedTuple):
     inp: np.ndarray
     head: np.ndarray
     H: np.ndarray
+    ghead: np.ndarray
     state: MimoState
 
     def fresh(self) -> "MimoConvolver":
@@ -69,10 +72,14 @@ class MimoConvolver(NamedTuple):
         return mimo_history(self.fresh(), np.ascontiguousarray(F, dtype=float))
 
 
-def mimo_convolver(blocks, block: int = 128) -> MimoConvolver:
+def mimo_convolver(blocks, block: int = 128, gather: bool = False) -> MimoConvolver:
     """The convolver of ``blocks``: a sequence of (out, inp, g), g (K_b, 2, 2) (lag 0 unused;
     kernels of other lengths padded with zeros to the longest), out, inp in {0, 1}, each pair at
-    most once (none: a convolver of zeros); ``block``: head and partition length B, a power of two >= 2.  At rest."""
+    most once (none: a convolver of zeros); ``block``: head and partition length B, a power of two >= 2.
+    gather: the first block's head summed as ``solvers.partitioned.partitioned_step`` sums it
+    (running sums over a ring of its input), so that its output, while the other blocks feeding
+    the same output get zero forces, is ``partitioned_convolver(g, block)``'s bit for bit (the
+    partitions' spectra, products and FFTs are the same operations in the same order).  At rest."""
     B = int(block)
     if B < 2 or B & (B - 1):
         raise ValueError(f"block = {block} must be a power of two >= 2")
@@ -100,10 +107,16 @@ def mimo_convolver(blocks, block: int = 128) -> MimoConvolver:
             S = np.fft.rfft(part, axis=0).T
             H[b, p - 1, :4] = S.real
             H[b, p - 1, 4:] = S.imag
+    ghead = np.zeros((4, B if gather and nb else 0))
+    if ghead.shape[1]:
+        ghead[:, : B - 1] = head[0, :, 1:][:, ::-1]
+        head[0] = 0.0
+        head[0, 0, 0] = 1.0                                 # not scattered
     state = MimoState(np.zeros((2, 2, 2 * B)), np.zeros((2, n, 4, B + 1)), np.zeros((2, n), np.int64),
-                      np.zeros((4, B + 1)), np.zeros((2, 2 * B), complex), np.zeros((2, B, 2)), np.zeros(3, np.int64))
+                      np.zeros((4, B + 1)), np.zeros((2, 2 * B), complex), np.zeros((2, B, 2)), np.zeros(4, np.int64),
+                      np.zeros((2, 2 * B)))
     return MimoConvolver(np.array([o for o, _ in pairs], np.int64), np.array([i for _, i in pairs], np.int64),
-                         head, H, state)
+                         head, H, ghead, state)
 
 
 @numba.njit(cache=True, inline="always")
@@ -117,6 +130,50 @@ def _scatter(h, a2, a3, f2, f3):
     for k in range(1, h0.shape[0]):
         a2[k] += h0[k] * f2 + h1[k] * f3
         a3[k] += h2[k] * f2 + h3[k] * f3
+
+
+@numba.njit(cache=True)
+def _gather(h, hbuf, p, F2, F3):
+    """``solvers.partitioned.partitioned_step``'s head, the same operations in the same order
+    (four running sums per component; views, so that the indices need no wraparound test).  Not
+    inlined: inside the time loop its eight running sums would compete for registers with the
+    loop's state (measured 250 ns a step slower)."""
+    B = h.shape[1]
+    hbuf[0, p] = F2
+    hbuf[1, p] = F3
+    hbuf[0, p + B] = F2
+    hbuf[1, p + B] = F3
+    h0 = h[0]
+    h1 = h[1]
+    h2 = h[2]
+    h3 = h[3]
+    u = hbuf[0, p + 2:]
+    w = hbuf[1, p + 2:]
+    m = B - 1
+    a2 = 0.0
+    b2 = 0.0
+    c2 = 0.0
+    d2 = 0.0
+    a3 = 0.0
+    b3 = 0.0
+    c3 = 0.0
+    d3 = 0.0
+    i = 0
+    while i + 3 < m:
+        a2 += h0[i] * u[i] + h1[i] * w[i]
+        a3 += h2[i] * u[i] + h3[i] * w[i]
+        b2 += h0[i + 1] * u[i + 1] + h1[i + 1] * w[i + 1]
+        b3 += h2[i + 1] * u[i + 1] + h3[i + 1] * w[i + 1]
+        c2 += h0[i + 2] * u[i + 2] + h1[i + 2] * w[i + 2]
+        c3 += h2[i + 2] * u[i + 2] + h3[i + 2] * w[i + 2]
+        d2 += h0[i + 3] * u[i + 3] + h1[i + 3] * w[i + 3]
+        d3 += h2[i + 3] * u[i + 3] + h3[i + 3] * w[i + 3]
+        i += 4
+    while i < m:
+        a2 += h0[i] * u[i] + h1[i] * w[i]
+        a3 += h2[i] * u[i] + h3[i] * w[i]
+        i += 1
+    return (a2 + b2) + (c2 + d2), (a3 + b3) + (c3 + d3)
 
 
 @numba.njit(cache=True)
@@ -137,7 +194,7 @@ def _accumulate(H, X, Y):
 def _next_block(mc):
     """At a block boundary: each live input's segment spectrum into its delay line, then each
     output's partition sum and one inverse FFT (overlap-save tail of the next B outputs)."""
-    out, inp, head, H, (acc, X, live, Y, seg, tail, ctr) = mc
+    out, inp, head, H, ghead, (acc, X, live, Y, seg, tail, ctr, hbuf) = mc
     B = head.shape[2]
     n = H.shape[1]
     N = 2 * B
@@ -203,10 +260,18 @@ def _next_block(mc):
 def mimo_step(mc, F2a, F3a, F2b, F3b):
     """njit: record the forces of step n at inputs 0 (a) and 1 (b); return (xi2, xi3) of outputs
     0 and 1 at step n + 1 (module notes)."""
-    out, inp, head, H, (acc, X, live, Y, seg, tail, ctr) = mc
+    out, inp, head, H, ghead, (acc, X, live, Y, seg, tail, ctr, hbuf) = mc
     B = head.shape[2]
     n = ctr[0]
     r = n & (B - 1)
+    g2 = 0.0
+    g3 = 0.0
+    if ghead.shape[1] > 0:                          # block 0 gathered (``mimo_convolver``)
+        if inp[0] == 0:
+            g2, g3 = _gather(ghead, hbuf, ctr[3], F2a, F3a)
+        else:
+            g2, g3 = _gather(ghead, hbuf, ctr[3], F2b, F3b)
+        ctr[3] = ctr[3] + 1 if ctr[3] + 1 < B else 0
     for b in range(out.shape[0]):
         if inp[b] == 0:
             f2 = F2a
@@ -228,10 +293,21 @@ def mimo_step(mc, F2a, F3a, F2b, F3b):
         if r == B - 1:
             _next_block(mc)
     r1 = (n + 1) & (B - 1)
-    xa2 = acc[0, 0, r + 1] + tail[0, r1, 0]
-    xa3 = acc[0, 1, r + 1] + tail[0, r1, 1]
-    xb2 = acc[1, 0, r + 1] + tail[1, r1, 0]
-    xb3 = acc[1, 1, r + 1] + tail[1, r1, 1]
+    xa2 = acc[0, 0, r + 1]
+    xa3 = acc[0, 1, r + 1]
+    xb2 = acc[1, 0, r + 1]
+    xb3 = acc[1, 1, r + 1]
+    if ghead.shape[1] > 0:                          # (gathered + 0) + tail: partitioned_step's sum
+        if out[0] == 0:
+            xa2 = g2 + xa2
+            xa3 = g3 + xa3
+        else:
+            xb2 = g2 + xb2
+            xb3 = g3 + xb3
+    xa2 += tail[0, r1, 0]
+    xa3 += tail[0, r1, 1]
+    xb2 += tail[1, r1, 0]
+    xb3 += tail[1, r1, 1]
     if r == B - 1:                                  # accumulators move one block on
         for o in range(2):
             for c in range(2):

@@ -52,3 +52,22 @@ def test_mimo_step_and_rejections():
         mimo_convolver([(0, 1, g)], 48)
     with pytest.raises(ValueError, match="distinct"):
         mimo_convolver([(0, 1, g), (0, 1, g)], 64)
+
+
+def test_gathered_block_is_the_partitioned_convolver_bit_for_bit():
+    """gather=True: block 0's output, with the other block feeding that output getting zero
+    forces, is solvers.partitioned's (the one-point loop's convolver) bit for bit."""
+    from solvers.partitioned import partitioned_convolver
+
+    rng = np.random.default_rng(5)
+    g = rng.standard_normal((1000, 2, 2)) * np.exp(-np.arange(1000) / 300.0)[:, None, None]
+    F = rng.standard_normal((3000, 4))
+    F[:, 2:] = 0.0
+    blocks = [(0, 0, g), (0, 1, 0.7 * g), (1, 0, 0.5 * g), (1, 1, g)]
+    xi = mimo_convolver(blocks, 128, gather=True).response(F)
+    ref = partitioned_convolver(g, 128).response(F[:, :2])
+    assert np.array_equal(xi[:, :2], ref)
+    F[:, 2:] = rng.standard_normal((3000, 2))                # and with every input loaded: the direct sum
+    ref = direct(blocks, F)
+    xi = mimo_convolver(blocks, 128, gather=True).response(F)
+    assert np.abs(xi - ref).max() <= 1e-9 * np.abs(ref).max()
