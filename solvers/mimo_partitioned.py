@@ -38,9 +38,9 @@ class MimoState(NamedTuple):
     (output, component, position from the current block's start); X (2, P-1, 4, B+1) the inputs'
     delay lines of spectra (Re F2, Im F2, Re F3, Im F3); live (2, P-1) int: 1 where that spectrum
     is not all zero; Y (4, B+1) work; seg (2, 2B) complex the inputs' last two blocks; tail (2, B,
-    2) the partitions' part of the current block's outputs; ctr (4,) int: step count, newest
+    2) the partitions' part of the current block's outputs; ctr (5,) int: step count, newest
     delay-line slot, bit i set while input i's current segment holds a non-zero force, ring
-    position; hbuf (2, 2B) the doubled ring of the gathered block's input (``MimoConvolver``)."""
+    position, 1 once a gathered block has switched to the scatter form; hbuf (2, 2B) the doubled ring of the gathered block's input (``MimoConvolver``)."""
     acc: np.ndarray
     X: np.ndarray
     live: np.ndarray
@@ -53,7 +53,7 @@ class MimoState(NamedTuple):
 
 class MimoConvolver(NamedTuple):
     """Blocks ``out[b]``, ``inp[b]`` (int arrays (nb,)); head (nb, 4, B): lags 0..B-1 of (g22,
-    g23, g32, g33), lag 0 unused (zero); H (nb, P-1, 8, B+1) the partitions' spectra (Re of g22,
+    g23, g32, g33), lag 0 unused (head[b, 0, 0] = 1 flags a head not to scatter: all zero, or gathered); H (nb, P-1, 8, B+1) the partitions' spectra (Re of g22,
     g23, g32, g33, then Im); ``state`` (MimoState, advanced IN PLACE)."""
     out: np.ndarray
     inp: np.ndarray
@@ -79,7 +79,9 @@ def mimo_convolver(blocks, block: int = 128, gather: bool = False) -> MimoConvol
     gather: the first block's head summed as ``solvers.partitioned.partitioned_step`` sums it
     (running sums over a ring of its input), so that its output, while the other blocks feeding
     the same output get zero forces, is ``partitioned_convolver(g, block)``'s bit for bit (the
-    partitions' spectra, products and FFTs are the same operations in the same order).  At rest."""
+    partitions' spectra, products and FFTs are the same operations in the same order).  At the
+    first non-zero force of input 1 the block switches to the scatter form (its last B - 1 inputs
+    scattered once from the ring): from then on its output is exact to rounding only.  At rest."""
     B = int(block)
     if B < 2 or B & (B - 1):
         raise ValueError(f"block = {block} must be a power of two >= 2")
@@ -100,6 +102,8 @@ def mimo_convolver(blocks, block: int = 128, gather: bool = False) -> MimoConvol
         flat = np.zeros((max(K, B), 4))
         flat[: g.shape[0]] = g.reshape(-1, 4)
         head[b, :, 1:] = flat[1:B].T
+        if not np.any(head[b]):
+            head[b, 0, 0] = 1.0                             # flag: an all-zero head, nothing to scatter
         for p in range(1, n + 1):
             part = np.zeros((2 * B, 4))
             seg = flat[p * B:(p + 1) * B]
@@ -107,13 +111,12 @@ def mimo_convolver(blocks, block: int = 128, gather: bool = False) -> MimoConvol
             S = np.fft.rfft(part, axis=0).T
             H[b, p - 1, :4] = S.real
             H[b, p - 1, 4:] = S.imag
+    if gather and nb and pairs[0] != (0, 0):
+        raise ValueError(f"gather: the first block must be (0, 0), got {pairs[0]}")
     ghead = np.zeros((4, B if gather and nb else 0))
-    if ghead.shape[1]:
-        ghead[:, : B - 1] = head[0, :, 1:][:, ::-1]
-        head[0] = 0.0
-        head[0, 0, 0] = 1.0                                 # not scattered
+    ghead[:, : B - 1] = head[0, :, 1:][:, ::-1] if ghead.shape[1] else 0.0
     state = MimoState(np.zeros((2, 2, 2 * B)), np.zeros((2, n, 4, B + 1)), np.zeros((2, n), np.int64),
-                      np.zeros((4, B + 1)), np.zeros((2, 2 * B), complex), np.zeros((2, B, 2)), np.zeros(4, np.int64),
+                      np.zeros((4, B + 1)), np.zeros((2, 2 * B), complex), np.zeros((2, B, 2)), np.zeros(5, np.int64),
                       np.zeros((2, 2 * B)))
     return MimoConvolver(np.array([o for o, _ in pairs], np.int64), np.array([i for _, i in pairs], np.int64),
                          head, H, ghead, state)
@@ -174,6 +177,23 @@ def _gather(h, hbuf, p, F2, F3):
         a3 += h2[i] * u[i] + h3[i] * w[i]
         i += 1
     return (a2 + b2) + (c2 + d2), (a3 + b3) + (c3 + d3)
+
+
+@numba.njit(cache=True)
+def _catch_up(h, acc, hbuf, n0, r0):
+    """Switch of a gathered block to the scatter form before step n0 (position r0 in its block):
+    scatter the inputs n0 - j, j = 1..B-2, still in the ring, into the accumulators of the outputs
+    n0 + 1.. they reach (lags k = j + 1..B-1)."""
+    B = h.shape[1]
+    for j in range(1, B - 1):
+        if n0 - j < 0:
+            break
+        p = (n0 - j) & (B - 1)
+        f2 = hbuf[0, p]
+        f3 = hbuf[1, p]
+        for k in range(j + 1, B):
+            acc[0, r0 - j + k] += h[0, k] * f2 + h[1, k] * f3
+            acc[1, r0 - j + k] += h[2, k] * f2 + h[3, k] * f3
 
 
 @numba.njit(cache=True)
@@ -266,11 +286,13 @@ def mimo_step(mc, F2a, F3a, F2b, F3b):
     r = n & (B - 1)
     g2 = 0.0
     g3 = 0.0
-    if ghead.shape[1] > 0:                          # block 0 gathered (``mimo_convolver``)
-        if inp[0] == 0:
-            g2, g3 = _gather(ghead, hbuf, ctr[3], F2a, F3a)
-        else:
-            g2, g3 = _gather(ghead, hbuf, ctr[3], F2b, F3b)
+    gathering = ghead.shape[1] > 0 and ctr[4] == 0
+    if gathering and (F2b != 0.0 or F3b != 0.0):   # input 1 loaded: block 0 to the scatter form
+        _catch_up(head[0], acc[0], hbuf, n, r)
+        ctr[4] = 1
+        gathering = False
+    if gathering:                                   # block (0, 0) gathered (``mimo_convolver``)
+        g2, g3 = _gather(ghead, hbuf, ctr[3], F2a, F3a)
         ctr[3] = ctr[3] + 1 if ctr[3] + 1 < B else 0
     for b in range(out.shape[0]):
         if inp[b] == 0:
@@ -279,7 +301,7 @@ def mimo_step(mc, F2a, F3a, F2b, F3b):
         else:
             f2 = F2b
             f3 = F3b
-        if f2 != 0.0 or f3 != 0.0:
+        if (f2 != 0.0 or f3 != 0.0) and head[b, 0, 0] == 0.0 and not (b == 0 and gathering):
             o = out[b]
             _scatter(head[b], acc[o, 0, r:], acc[o, 1, r:], f2, f3)
     ctr[0] = n + 1
@@ -297,13 +319,9 @@ def mimo_step(mc, F2a, F3a, F2b, F3b):
     xa3 = acc[0, 1, r + 1]
     xb2 = acc[1, 0, r + 1]
     xb3 = acc[1, 1, r + 1]
-    if ghead.shape[1] > 0:                          # (gathered + 0) + tail: partitioned_step's sum
-        if out[0] == 0:
-            xa2 = g2 + xa2
-            xa3 = g3 + xa3
-        else:
-            xb2 = g2 + xb2
-            xb3 = g3 + xb3
+    if gathering:                                   # (gathered + 0) + tail: partitioned_step's sum
+        xa2 = g2 + xa2
+        xa3 = g3 + xa3
     xa2 += tail[0, r1, 0]
     xa3 += tail[0, r1, 1]
     xb2 += tail[1, r1, 0]

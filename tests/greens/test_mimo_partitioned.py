@@ -71,3 +71,15 @@ def test_gathered_block_is_the_partitioned_convolver_bit_for_bit():
     ref = direct(blocks, F)
     xi = mimo_convolver(blocks, 128, gather=True).response(F)
     assert np.abs(xi - ref).max() <= 1e-9 * np.abs(ref).max()
+
+
+def test_gathered_block_switches_to_scatter_when_the_second_input_loads():
+    rng = np.random.default_rng(6)
+    g = rng.standard_normal((700, 2, 2)) * np.exp(-np.arange(700) / 200.0)[:, None, None]
+    blocks = [(0, 0, g), (0, 1, 0.7 * g), (1, 0, 0.5 * g), (1, 1, g)]
+    F = rng.standard_normal((2500, 4))
+    for n0 in (1000, 1023, 1030):                            # input b loads mid-block and at a block end
+        F[:n0, 2:] = 0.0
+        ref = direct(blocks, F)
+        xi = mimo_convolver(blocks, 128, gather=True).response(F)
+        assert np.abs(xi - ref).max() <= 1e-9 * np.abs(ref).max(), n0
