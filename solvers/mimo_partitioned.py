@@ -276,7 +276,7 @@ def _next_block(mc):
     ctr[2] = live_now
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True)
 def mimo_step(mc, F2a, F3a, F2b, F3b):
     """njit: record the forces of step n at inputs 0 (a) and 1 (b); return (xi2, xi3) of outputs
     0 and 1 at step n + 1 (module notes)."""
