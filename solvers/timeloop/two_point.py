@@ -16,9 +16,9 @@ Each point solves the one-point contact of [4.16]-[4.31] (``kernel._point_contac
 approach (static approach of the point minus its relative displacement along its own normal),
 creepages and tables.  Point a is the one-point loop's point: when point b carries no load (its
 approach never reaches its table), every force deviation of b is zero, its contributions to the
-filters and convolutions are exact zeros and point a's records are the one-point loop's to
-rounding (g_aa is summed in another order than by ``solvers.partitioned``: ~1e-14 relative;
-tests/interaction/test_two_point.py asks 1e-12).
+filters and convolutions are exact zeros and point a's records are the one-point loop's bit for
+bit (the MIMO convolver gathers g_aa's head as ``solvers.partitioned`` does until b's first force;
+tests/interaction/test_two_point.py).
 """
 from __future__ import annotations
 

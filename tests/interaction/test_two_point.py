@@ -1,8 +1,7 @@
 """The two-point time loop (issue 26, solvers/timeloop/two_point.py):
 
 * with the second point carrying no load (its zone never reached) the first point's records are
-  the one-point loop's (to 1e-12: the rail's blocks go through the MIMO convolver, which sums
-  in another order than the one-point loop's, so not bit for bit);
+  the one-point loop's (to 1e-12; in fact bit for bit);
 * two identical patches at the same place (same shapes, every rail block the same kernel, same
   tables, no separation) are one patch of twice the normal stiffness (NORM table F3 doubled, the
   tangential compliances halved): the summed forces equal the one-point loop's with that contact;
