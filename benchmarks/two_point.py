@@ -88,7 +88,9 @@ the 4 x 4 kernel's 2 x 2-per-bin products summed per point before the inverse FF
 1-127) in scatter form (a multiply-add over the lags with no running sum, so it vectorises; ~4x faster than the
 gathered sum). g_aa's head stays gathered as the one-point loop sums it while the second point carries no force, so
 that the reduction to one point stays bit for bit; at the second point's first force it switches to the scatter
-form. Before (the same machine, 8 s, load 8): four separate partitioned convolvers, 2.32-2.47x. Where the time goes
+form. Before: four separate partitioned convolvers, 2.32-2.47x (load 8); old and new loops alternated in one run
+(separate processes, minimum of 5, load 1-2): both loaded 2.55x -> 1.98x, second never loaded 2.39x -> 1.51x, the
+records the same to 1.5e-14 (both loaded) and bit for bit (second never loaded). Where the time goes
 now: the partitions' products of four 4096-lag blocks (4 x 31 partitions x 129 bins per 128 steps; 1 MB of kernel
 spectra streamed through the cache every 128 steps, so the ratio grows with the machine's load) and the second
 contact solve. Tried and measured no faster, so not kept: a two-level split (lags from 1024 on in partitions of 1024:
