@@ -7,15 +7,18 @@ Structures at two points.  The wheel's modal filters take the modal force of bot
 P_r = phi_r(a) . dF_a + phi_r(b) . dF_b, and return the displacement at both (phi(a), phi(b):
 the shapes at the two points, each in its own contact frame): the modal sum gives the point and
 the cross receptances exactly.  The rail's moving kernel at two head points is a 4 x 4 kernel of
-2 x 2 blocks g_pq (response at p to a force at q), convolved block by block with the exact
-partitioned convolver (``solvers.partitioned``).  xi_p = xi^R_p - xi^W_p as in the one-point loop.
+2 x 2 blocks g_pq (response at p to a force at q), convolved together by the exact frequency-domain
+MIMO convolver (``solvers.mimo_partitioned``: the one-point loop's overlap-save partitions, a
+vectorised head, one FFT per point's forces and one per point's displacements, the second point's
+forces skipped while they are zero).  xi_p = xi^R_p - xi^W_p as in the one-point loop.
 
 Each point solves the one-point contact of [4.16]-[4.31] (``kernel._point_contact``) with its own
 approach (static approach of the point minus its relative displacement along its own normal),
 creepages and tables.  Point a is the one-point loop's point: when point b carries no load (its
 approach never reaches its table), every force deviation of b is zero, its contributions to the
-filters and convolutions are exact zeros and point a's records are the one-point loop's
-(tests/interaction/test_two_point.py).
+filters and convolutions are exact zeros and point a's records are the one-point loop's bit for
+bit (the MIMO convolver gathers g_aa's head as ``solvers.partitioned`` does until b's first force;
+tests/interaction/test_two_point.py).
 """
 from __future__ import annotations
 
@@ -27,7 +30,7 @@ import numpy as np
 from ..contact.compliance import table_compliance
 from ..contact.norm import table_force
 from ..modal_filter import FilterState, modal_filter
-from ..partitioned import partitioned_step
+from ..mimo_partitioned import mimo_step
 from .inputs import FULL_SLIP
 from .kernel import _point_contact
 from .result import store
@@ -144,9 +147,10 @@ def _row(row, F1, F2, F3, s1, s2, xi2, xi3, state):
 
 
 @numba.njit(cache=True)
-def run_two_points(filt, r_aa, r_ab, r_ba, r_bb, pa, pb, tab_a, tab_b, rec_a, rec_b, win):
-    """The two-point time loop (module notes), entirely in numba.  filt: TwoPointFilter; r_pq:
-    PartitionedConvolver of the rail's block g_pq (response at p to a force at q); pa, pb:
+def run_two_points(filt, r_x, pa, pb, tab_a, tab_b, rec_a, rec_b, win):
+    """The two-point time loop (module notes), entirely in numba.  filt: TwoPointFilter; r_x:
+    MimoConvolver of the rail's blocks g_pq (response at p to a force at q; outputs and inputs
+    0 = a, 1 = b); pa, pb:
     LoopParams of the points (n_steps, dt, v of pa rule; the kick of each point is its own);
     tab_a, tab_b: PointTables; rec_a, rec_b: Records (written in place); win: Windows of the
     stop rule on the summed forces F2a + F2b, F3a + F3b.  Returns (steps done, stop reason)."""
@@ -215,14 +219,11 @@ def run_two_points(filt, r_aa, r_ab, r_ba, r_bb, pa, pb, tab_a, tab_b, rec_a, re
             d2b += pb.kick[0]
             d3b += pb.kick[1]
         w2a, w3a, w2b, w3b = filter_step2(filt, d2a, d3a, d2b, d3b)
-        ra2, ra3 = partitioned_step(r_aa, d2a, d3a)
-        qa2, qa3 = partitioned_step(r_ab, d2b, d3b)
-        rb2, rb3 = partitioned_step(r_ba, d2a, d3a)
-        qb2, qb3 = partitioned_step(r_bb, d2b, d3b)
-        xi2a = (ra2 + qa2) + w2a
-        xi3a = (ra3 + qa3) + w3a
-        xi2b = (qb2 + rb2) + w2b
-        xi3b = (qb3 + rb3) + w3b
+        qa2, qa3, qb2, qb3 = mimo_step(r_x, d2a, d3a, d2b, d3b)
+        xi2a = qa2 + w2a
+        xi3a = qa3 + w3a
+        xi2b = qb2 + w2b
+        xi3b = qb3 + w3b
         if win.nw > 0:
             jw, iw, reason = record_window(F2a + F2b, F3a + F3b, n + 1, dt, win, jw, iw)
         done = n + 1

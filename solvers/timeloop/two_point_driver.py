@@ -23,8 +23,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..contact.norm import table_force
+from ..mimo_partitioned import mimo_convolver
 from ..partitioned import DEFAULT_BLOCK
-from .driver import RunSettings, loop_params, rail_convolver
+from .driver import RunSettings, loop_params
 from .inputs import ContactModel, WheelModes, point_tables, static_approach
 from .result import InteractionResult, assemble, record, squeal_measures
 from .stop import windows
@@ -130,11 +131,14 @@ def simulate_two(wheel: WheelModes | None, rail_blocks, contact: ContactModel, s
         filt = two_point_filter(s.dt, wheel.f_r, wheel.modal_mass, wheel.zeta, wheel.phi, second.phi)
     blocks = tuple(rail_blocks) if rail_blocks is not None else (None,) * 4
     block = s.rail_block if s.rail_block is not None else DEFAULT_BLOCK
-    rcs = [rail_convolver(g, s.rail_block if g is not None else block) for g in blocks]
+    cross = [(o, i, g) for (o, i), g in zip(((0, 0), (0, 1), (1, 0), (1, 1)), blocks) if g is not None]
+    if s.rail_block is None:                   # the direct sum: one head over the whole kernel
+        block = 1 << max(1, int(np.ceil(np.log2(max([len(g) for _, _, g in cross], default=2)))))
+    r_x = mimo_convolver(cross, block, gather=blocks[0] is not None)   # g_aa: the one-point loop's sums
     info = dict(dt=s.dt, v=s.v, preload=s.preload, duration=s.duration, start=s.start, kick=kick,
                 slip_sign=s.slip_sign, final=s.final, store_every=store_every, eps=pa.eps, points=2)
     t0 = time.perf_counter()
-    done, reason = run_two_points(filt, *rcs, pa, pb, point_tables(contact), point_tables(cb), rec_a, rec_b, win)
+    done, reason = run_two_points(filt, r_x, pa, pb, point_tables(contact), point_tables(cb), rec_a, rec_b, win)
     wall = time.perf_counter() - t0
     a = assemble(rec_a, win, done, reason, pa, wall, info)
     b = assemble(rec_b, win, done, reason, pb, wall, dict(info, eps=pb.eps))
