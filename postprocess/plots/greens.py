@@ -15,7 +15,7 @@ def kernels_figure(a: dict, case: str):
     for (i, j, lab) in ((0, 0, "g22"), (1, 1, "g33"), (0, 1, "g23")):
         axs[0].plot(1e3 * tw, a["wheel_kernel"][:, i, j], lw=0.6, label=lab)
         axs[1].plot(1e3 * tr, a["rail_kernel"][:, i, j], lw=0.8, label=lab)
-    axs[0].set_title(f"{case}: wheel Green's function (Kropp, band-limited to {a['wheel_band_limit'] / 1e3:.1f} kHz), "
+    axs[0].set_title(f"{case}: wheel Green's function (modal, band-limited to {a['wheel_band_limit'] / 1e3:.1f} kHz), "
                      f"first {len(tw)} lags of dt = {1e6 * a['dt']:.0f} us")
     axs[1].set_title(f"rail moving Green's function ({len(tr)} lags), v = {3.6 * a['v']:.0f} km/h")
     for ax in axs:
