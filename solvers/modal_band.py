@@ -14,7 +14,24 @@ import numpy as np
 from .band_fit import BandFit, band_index, fit_edges, fit_taps
 from .kropp import frequency_grid
 from .modal_filter import modal_kernel, modal_kernel_at, modal_kernel_dtft
-from .receptance import wheel_receptance
+
+
+def band_receptance(f_hz, f_r, modal_mass, zeta, phi, chunk: int = 1 << 15) -> np.ndarray:
+    """G22, G33, G23 (nf, 3) complex m/N: the modal sum [4.10] as ``solvers.receptance.wheel_receptance``
+    (the same H_r = 1 / (m_r (w_r^2 - W^2 + 2 i zeta_r w_r W))), in real arithmetic: the modal factors'
+    real and imaginary parts times the real shape products (equal to rounding, 3x faster)."""
+    f_hz = np.asarray(f_hz, float)
+    w = 2 * np.pi * f_r
+    P = np.stack([phi[:, 0] * phi[:, 0], phi[:, 1] * phi[:, 1], phi[:, 0] * phi[:, 1]], axis=1)   # (M, 3)
+    out = np.empty((len(f_hz), 3), complex)
+    for a in range(0, len(f_hz), chunk):
+        W = 2 * np.pi * f_hz[a:a + chunk, None]
+        re = w * w - W * W
+        im = 2.0 * zeta * w * W
+        den = modal_mass * (re * re + im * im)
+        out[a:a + chunk].real = (re / den) @ P
+        out[a:a + chunk].imag = -(im / den) @ P
+    return out
 
 
 def corrected_modal_kernel(n_lags: int, dt: float, f_r, modal_mass, zeta, phi, n_t: int, band_limit: float,
@@ -26,13 +43,17 @@ def corrected_modal_kernel(n_lags: int, dt: float, f_r, modal_mass, zeta, phi, n
     modal = (dt, f_r, modal_mass, zeta, phi)
     kb = band_index(band_limit, dt, n_t)
     f = frequency_grid(dt, n_t)[: kb + 1]
-    G = wheel_receptance(f, f_r, modal_mass, np.zeros(len(f_r), int), phi, zeta).reshape(kb + 1, 4)
+    phi = np.asarray(phi, float).reshape(len(f_r), 2)
+    G = band_receptance(f, f_r, modal_mass, zeta, phi)                  # G22, G33, G23 (G32 = G23)
     edges = fit_edges(kb, n_fit)
     k0 = edges[:-1]
-    E0 = G[k0] - modal_kernel_dtft(f[k0], *modal).reshape(-1, 4)
-    E1 = G[k0 + 1] - modal_kernel_dtft(f[k0 + 1], *modal).reshape(-1, 4)
-    h, err = fit_taps(np.abs(G), E0, E1, edges, n_t, int(taps), float(fit_tol))
-    fit = BandFit(float(band_limit), int(taps), h.reshape(int(taps), 2, 2), err.reshape(2, 2), len(k0))
+    three = [0, 3, 1]                                                    # (2, 2) flattened: 22, 33, 23
+    E0 = G[k0] - modal_kernel_dtft(f[k0], *modal).reshape(-1, 4)[:, three]
+    E1 = G[k0 + 1] - modal_kernel_dtft(f[k0 + 1], *modal).reshape(-1, 4)[:, three]
+    h3, err3 = fit_taps(np.abs(G), E0, E1, edges, n_t, int(taps), float(fit_tol))
+    four = [0, 2, 2, 1]                                                  # back to 22, 23, 32, 33
+    fit = BandFit(float(band_limit), int(taps), h3[:, four].reshape(int(taps), 2, 2), err3[four].reshape(2, 2),
+                  len(k0))
     g = modal_kernel(n_lags, *modal)
     g[:taps] += fit.correction
     return g, fit
