@@ -137,7 +137,6 @@ def library_versions() -> dict[str, str]:
     read once per installation (``_installation_key``) and kept in
     ``$SQUEAL_BUILD_DIR/.library_versions.json``; without a usable cache they are imported."""
     import json
-    import os
 
     from . import paths
 
@@ -151,10 +150,10 @@ def library_versions() -> dict[str, str]:
         pass
     versions = _import_versions()
     try:
+        from .atomic import save_text
+
         cache.parent.mkdir(parents=True, exist_ok=True)
-        tmp = cache.with_name(f"{cache.name}.{os.getpid()}.tmp")
-        tmp.write_text(json.dumps({"key": key, "versions": versions}))
-        os.replace(tmp, cache)
+        save_text(json.dumps({"key": key, "versions": versions}), cache)
     except OSError:
         pass
     return versions
