@@ -103,14 +103,16 @@ def atomic_write(path: str | os.PathLike) -> Iterator[Path]:
 
 def save_figure(fig, path: str | os.PathLike, **savefig_kw) -> Path:
     """Write a matplotlib figure atomically (``fig.savefig(tmp, **savefig_kw)``),
-    then close it (pyplot figures are released).  Returns the path."""
+    then close it (pyplot figures are released; a figure made without pyplot needs nothing, and
+    pyplot is not imported for it).  Returns the path."""
+    import sys
+
     try:
         with atomic_write(path) as tmp:
             fig.savefig(tmp, **savefig_kw)
     finally:
-        import matplotlib.pyplot as plt
-
-        plt.close(fig)
+        if "matplotlib.pyplot" in sys.modules:
+            sys.modules["matplotlib.pyplot"].close(fig)
     return Path(path)
 
 

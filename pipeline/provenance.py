@@ -1,7 +1,7 @@
 """Provenance of an artifact: what produced it (kind, resolved configuration
 and its hash, time, git revision, library versions).  The heavy libraries whose
 versions are recorded (dolfinx, PETSc, SLEPc, gmsh, numba, scipy) are imported
-lazily, on the first call to :func:`library_versions`."""
+lazily, once per installation (:func:`library_versions`, cached on disk)."""
 from __future__ import annotations
 
 import copy
@@ -85,9 +85,8 @@ def _petsc_like_version(module_name: str) -> str:
     return str(version)
 
 
-@functools.lru_cache(maxsize=None)
-def library_versions() -> dict[str, str]:
-    """Versions of the numerical stack (imported lazily, cached per process)."""
+def _import_versions() -> dict[str, str]:
+    """The versions, read from the imported modules."""
     return {
         "numpy": np.__version__,
         "dolfinx": _module_version("dolfinx"),
@@ -99,6 +98,65 @@ def library_versions() -> dict[str, str]:
         "numba": _module_version("numba"),
         "scipy": _module_version("scipy"),
     }
+
+
+_DISTRIBUTIONS = ("numpy", "fenics-dolfinx", "petsc4py", "slepc4py", "numba", "scipy")
+
+
+def _installation_key() -> str:
+    """What the versions depend on, read without importing the libraries: the interpreter, the
+    installed distributions' versions and the locations and times of the modules (a changed
+    installation changes the key)."""
+    import importlib.metadata
+    import importlib.util
+    import sys
+
+    parts = [sys.executable, sys.version]
+    for dist in _DISTRIBUTIONS:
+        try:
+            parts.append(f"{dist}={importlib.metadata.version(dist)}")
+        except importlib.metadata.PackageNotFoundError:
+            parts.append(f"{dist}=-")
+    for name in ("numpy", "dolfinx", "petsc4py", "slepc4py", "gmsh", "numba", "scipy"):
+        try:
+            spec = importlib.util.find_spec(name)
+        except (ImportError, ValueError):
+            spec = None
+        origin = getattr(spec, "origin", None)
+        try:
+            parts.append(f"{name}:{origin}:{Path(origin).stat().st_mtime_ns}" if origin else f"{name}:-")
+        except OSError:
+            parts.append(f"{name}:{origin}:?")
+    return config_hash({"installation": parts})
+
+
+@functools.lru_cache(maxsize=None)
+def library_versions() -> dict[str, str]:
+    """Versions of the numerical stack, cached per process and on disk: importing dolfinx, PETSc
+    and SLEPc only to read their versions costs a second or two per stage, so the versions are
+    read once per installation (``_installation_key``) and kept in
+    ``$SQUEAL_BUILD_DIR/.library_versions.json``; without a usable cache they are imported."""
+    import json
+
+    from . import paths
+
+    cache = paths.build() / ".library_versions.json"
+    key = _installation_key()
+    try:
+        stored = json.loads(cache.read_text())
+        if stored.get("key") == key and isinstance(stored.get("versions"), dict):
+            return dict(stored["versions"])
+    except (OSError, ValueError):
+        pass
+    versions = _import_versions()
+    try:
+        from .atomic import save_text
+
+        cache.parent.mkdir(parents=True, exist_ok=True)
+        save_text(json.dumps({"key": key, "versions": versions}), cache)
+    except OSError:
+        pass
+    return versions
 
 
 def provenance(kind: str, config: Mapping) -> dict:

@@ -41,18 +41,33 @@ def fit_first_taps(G_band: np.ndarray, g: np.ndarray, dt: float, n_t: int, taps:
     comp = G_band.shape[1:]
     Gb = G_band.reshape(kb + 1, -1)
     E = Gb - sfft.rfft(g, n=n_t, axis=0)[: kb + 1].reshape(kb + 1, -1)   # what is missing in band
-    # fit segments [e_i, e_i+1]: the pair (e_i, e_i + 1) is the fit point, min |G| over the segment its weight
-    edges = np.unique(np.linspace(1, kb, min(n_fit, kb // 2) + 1).round().astype(np.int64))
+    edges = fit_edges(kb, n_fit)
     k0 = edges[:-1]
-    Gmin = np.minimum.reduceat(np.abs(Gb[: edges[-1] + 1]), edges, axis=0)[:-1]
-    Em = 0.5 * (E[k0] + E[k0 + 1])
+    h, err = fit_taps(np.abs(Gb), E[k0], E[k0 + 1], edges, n_t, taps, fit_tol)
+    return h.reshape((taps,) + comp), err.reshape(comp), len(k0)
+
+
+def fit_edges(kb: int, n_fit: int = 2000) -> np.ndarray:
+    """The fit segments [e_i, e_i+1] of the band's grid points 1..kb: the pair of grid points
+    (e_i, e_i + 1) is the fit point, min |G| over the segment its weight."""
+    return np.unique(np.linspace(1, kb, min(n_fit, kb // 2) + 1).round().astype(np.int64))
+
+
+def fit_taps(absG: np.ndarray, E0: np.ndarray, E1: np.ndarray, edges: np.ndarray, n_t: int, taps: int,
+             fit_tol: float):
+    """The correction h (taps, C) of the first samples and the reached max weighted residual (C,),
+    from |G| on the band's grid points 0..edges[-1] (or more) (kb + 1, C) and the error E = G - DFT(g)
+    at the fit points' two grid points k0 = edges[:-1] and k0 + 1 (len(k0), C) each."""
+    k0 = edges[:-1]
+    Gmin = np.minimum.reduceat(absG[: edges[-1] + 1], edges, axis=0)[:-1]
+    Em = 0.5 * (E0 + E1)
     lags = np.arange(taps)
     ph = (2 * np.pi / n_t) * lags[None, :]
     X = 0.5 * (np.exp(-1j * ph * k0[:, None]) + np.exp(-1j * ph * (k0[:, None] + 1)))  # DFT of the taps, same means
-    h = np.zeros((taps, Gb.shape[1]))
-    err = np.zeros(Gb.shape[1])
-    for c in range(Gb.shape[1]):
-        top = np.abs(Gb[:, c]).max()
+    h = np.zeros((taps, absG.shape[1]))
+    err = np.zeros(absG.shape[1])
+    for c in range(absG.shape[1]):
+        top = absG[:, c].max()
         if top == 0.0:
             continue
         W = 1.0 / np.maximum(Gmin[:, c], 1e-9 * top)
@@ -78,4 +93,4 @@ def fit_first_taps(G_band: np.ndarray, g: np.ndarray, dt: float, n_t: int, taps:
                     hi = mid
         h[:, c] = solve(10 ** lo * sv[0])
         err[c] = resid(h[:, c])
-    return h.reshape((taps,) + comp), err.reshape(comp), len(k0)
+    return h, err

@@ -37,14 +37,40 @@ def modal_kernel(n_lags: int, dt: float, f_r, modal_mass, zeta, phi) -> np.ndarr
     """The sampled modal impulse response g[k] = dt sum_r phi_r phi_r^T h_r(k dt)/m_r,
     k = 0..n_lags-1, (n_lags, 2, 2) in m/N; phi (M, 2) = (Phi_2, Phi_3) at the contact
     point.  This is the kernel ``ModalFilter`` reproduces exactly (g[0] = 0)."""
+    return modal_kernel_at(np.arange(n_lags), dt, f_r, modal_mass, zeta, phi)
+
+
+def modal_kernel_at(lags, dt: float, f_r, modal_mass, zeta, phi) -> np.ndarray:
+    """``modal_kernel`` at the given lags k (any integers >= 0), (len(lags), 2, 2) in m/N."""
     f_r, modal_mass, zeta = (np.atleast_1d(np.asarray(a, float)) for a in (f_r, modal_mass, zeta))
     phi = np.asarray(phi, float).reshape(len(f_r), 2)
-    t = np.arange(n_lags) * dt
-    g = np.zeros((n_lags, 2, 2))
+    t = np.asarray(lags) * dt
+    g = np.zeros((len(t), 2, 2))
     for r in range(len(f_r)):
         h = dt * modal_impulse(t, f_r[r], zeta[r]) / modal_mass[r]
         g += h[:, None, None] * np.outer(phi[r], phi[r])[None]
     return g
+
+
+def modal_kernel_dtft(f_hz, dt: float, f_r, modal_mass, zeta, phi) -> np.ndarray:
+    """The spectrum sum_{k>=0} g[k] exp(-2 pi i f k dt) of the whole (untruncated) ``modal_kernel``,
+    (nf, 2, 2) complex m/N, in closed form: per mode the geometric sums of
+    h(k dt) = exp(-sigma k dt) sinh(mu k dt)/mu give, with x = exp(-sigma dt - 2 pi i f dt),
+    x sinh(mu dt)/mu / (1 - 2 x cosh(mu dt) + x^2) (sinh(mu dt)/mu and cosh(mu dt) real for any
+    zeta >= 0: mu^2 = w^2 (zeta^2 - 1)).  It is the aliased sum of the receptance over the images
+    f + m/dt (module notes of ``solvers.green``)."""
+    f_r, modal_mass, zeta = (np.atleast_1d(np.asarray(a, float)) for a in (f_r, modal_mass, zeta))
+    phi = np.asarray(phi, float).reshape(len(f_r), 2)
+    w = 2 * np.pi * f_r
+    mu = np.sqrt((w * w * (zeta * zeta - 1.0)).astype(complex))
+    x_mu = mu * dt
+    safe = np.where(np.abs(x_mu) < 1e-8, 1.0, x_mu)
+    sinhc = np.where(np.abs(x_mu) < 1e-8, 1.0, np.sinh(safe) / safe).real * dt   # sinh(mu dt)/mu
+    cosh = np.cosh(x_mu).real
+    x = np.exp(-(zeta * w)[None, :] * dt - 2j * np.pi * np.atleast_1d(np.asarray(f_hz, float))[:, None] * dt)
+    H = dt * x * sinhc / (modal_mass * (1.0 - 2.0 * x * cosh + x * x))              # (nf, M)
+    P = (phi[:, :, None] * phi[:, None, :]).reshape(len(f_r), 4)
+    return (H @ P).reshape(-1, 2, 2)
 
 
 class FilterState(NamedTuple):
