@@ -80,8 +80,8 @@ def _powers(model, n: int, f: float, forces, ds_max: float, ground: float | None
     modes = model.meta["modes"]
     idx = model.groups[list(model.harmonics).index(n)]
     V, T, phi, loop, nrm = wheel_mesh(model, n, f, ds_max)
-    vns = [math.sqrt(2) * normal_velocity(np.asarray(modes["shapes"], float), loop, nrm, idx, model.f_r,
-                                          model.modal_mass, model.zeta, model.phi, f, F2, F3, n, phi, np.pi)
+    vns = [math.sqrt(2) * normal_velocity(model, np.asarray(modes["shapes"], float), idx, loop, nrm, phi, np.pi, f,
+                                          F2, F3, n)
            for F2, F3 in forces]
     k = 2 * np.pi * f / model.c0
     t0 = time.perf_counter()

@@ -95,15 +95,16 @@ def revolve(rz: np.ndarray, n_phi: int) -> tuple[np.ndarray, np.ndarray, np.ndar
     return V, T, np.repeat(phi, N)
 
 
-def normal_velocity(shapes: np.ndarray, nodes: np.ndarray, normals: np.ndarray, idx, f_r, modal_mass, zeta,
-                    phi_c, f: float, F2: complex, F3: complex, n: int, phi_v: np.ndarray, phi_contact: float):
+def normal_velocity(modal, shapes: np.ndarray, idx, nodes: np.ndarray, normals: np.ndarray, phi_v: np.ndarray,
+                    phi_contact: float, f: float, F2: complex, F3: complex, n: int) -> np.ndarray:
     """Outward normal velocity amplitude (complex, per vertex) of harmonic ``n`` at frequency f for a
-    force (F2, F3) at the contact point: modes ``idx`` of harmonic n with shapes (M, nodes, 3) =
-    (U_r, U_z, U_phi) at the outline ``nodes`` (section node indices, one per outline vertex, the
-    revolved mesh's vertex order), ``normals`` (n_r, n_z) per outline vertex, phi_c (M, 2) the modes'
-    (U_z, U_r) at the contact point, ``phi_v`` each vertex's angle, ``phi_contact`` the contact's."""
-    H = modal_frf(f, f_r[idx], modal_mass[idx], zeta[idx])[0]
-    q = 1j * 2 * np.pi * f * H * (phi_c[idx, 0] * F2 + phi_c[idx, 1] * F3)               # [4.54]
+    force (F2, F3) at the contact point.  ``modal``: the wheel's modes (attributes f_r, modal_mass,
+    zeta and phi (M, 2) = (U_z, U_r) at the contact point: a ``force_radiation.RadiationModel``);
+    ``idx`` the modes of harmonic n; ``shapes`` (M, section nodes, 3) = (U_r, U_z, U_phi); ``nodes`` the
+    outline's section nodes (one per outline vertex, the revolved mesh's vertex order), ``normals``
+    (n_r, n_z) per outline vertex; ``phi_v`` each vertex's angle, ``phi_contact`` the contact's."""
+    H = modal_frf(f, modal.f_r[idx], modal.modal_mass[idx], modal.zeta[idx])[0]
+    q = 1j * 2 * np.pi * f * H * (modal.phi[idx, 0] * F2 + modal.phi[idx, 1] * F3)       # [4.54]
     sh = shapes[idx][:, nodes, :]                                                         # (k, N, 3)
     un = sh[:, :, 0] * normals[:, 0] + sh[:, :, 1] * normals[:, 1]                        # (k, N)
     section = q @ un                                                                      # (N,)

@@ -3,6 +3,8 @@ revolved mesh (closed, outward normals: its divergence-theorem volume is the exa
 revolved polygon) and the normal velocity of a harmonic (its angular dependence and magnitude)."""
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 
 from postprocess.wheel_bem import coarsen, normal_velocity, outline, outward_normals, revolve
@@ -55,8 +57,8 @@ def test_normal_velocity_of_a_harmonic():
     shapes[0, :, 1] = 1.0                              # a pure axial shape U_z = 1
     f_r, m_r, zeta = np.array([434.0]), np.array([1.0]), np.array([1e-3])
     phi_c = np.array([[1.0, 0.0]])                     # (U_z, U_r) at the contact point
-    vn = normal_velocity(shapes, loop, outward_normals(rz), np.array([0]), f_r, m_r, zeta, phi_c, 434.0, 1.0, 0.0,
-                         2, phi, np.pi)
+    modal = SimpleNamespace(f_r=f_r, modal_mass=m_r, zeta=zeta, phi=phi_c)
+    vn = normal_velocity(modal, shapes, np.array([0]), loop, outward_normals(rz), phi, np.pi, 434.0, 1.0, 0.0, 2)
     H = 1 / (m_r[0] * (2j * zeta[0] * (2 * np.pi * 434.0) ** 2))                  # at resonance
     amp = abs(1j * 2 * np.pi * 434.0 * H)
     nz = outward_normals(rz)[:, 1]
