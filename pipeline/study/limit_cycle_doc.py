@@ -129,7 +129,7 @@ coupling feeds energy in; nothing in full slip limits it. It grows until the lat
 about s0, dips below s_knee once per period: there mu_RF rises with slope mu_RF' F3 (~1e5-1e6 N s/m, a
 damper on the lateral relative motion far stronger than the mode's own damping), and the energy taken
 out in that short partial-slip stretch balances the coupling's gain over the rest of the period. So the
-lateral slip's downward swing equals the margin: in the default case s2 runs from {dflt['s2_min']:.3f} to
+lateral slip's downward swing is the margin, slightly overshot: in the default case s2 runs from {dflt['s2_min']:.3f} to
 {dflt['s2_max']:.3f} m/s about -{dflt['s0']:.3f} (never reverses), its dip {dflt['s2_swing_down']:.3f} m/s
 against a margin of {dflt['margin']:.3f} m/s (s_knee {dflt['s_knee']:.3f} m/s); partial slip
 {100 * dflt['share_partial']:.0f} % of the time, F2/(mu F3) {dflt['ratio_min']:.3f}-{dflt['ratio_max']:.3f}, F3 between
