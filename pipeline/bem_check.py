@@ -32,8 +32,9 @@ ROOT = Path(__file__).resolve().parents[1]
 GROUND_BELOW_CONTACT = 0.16      # m: a rigid ground at about the BV50's foot (153 mm rail height + pad)
 
 
-def wheel_mesh(model, n: int, f: float, ds_max: float):
-    """(vertices, triangles, phi per vertex, outline node indices, outline normals) for harmonic n at f."""
+def wheel_mesh(model, n: int, f: float, ds_max: float, n_phi: int | None = None):
+    """(vertices, triangles, phi per vertex, outline node indices, outline normals) for harmonic n at f
+    (``n_phi``: the number of vertices around, instead of the lambda/6 rule)."""
     from postprocess.wheel_bem import coarsen, outline, outward_normals, revolve
 
     modes = model.meta["modes"]
@@ -41,7 +42,7 @@ def wheel_mesh(model, n: int, f: float, ds_max: float):
     h = model.c0 / f / 6
     loop = coarsen(pts, outline(pts, np.asarray(modes["cells"], int)), min(h, ds_max))
     rz = pts[loop]
-    n_phi = max(24, 8 * n, math.ceil(2 * np.pi * rz[:, 0].max() / h))
+    n_phi = n_phi or max(24, 8 * n, math.ceil(2 * np.pi * rz[:, 0].max() / h))
     V, T, phi = revolve(rz, n_phi)
     return V, T, phi, loop, outward_normals(rz)
 
@@ -71,7 +72,7 @@ def wheel_rows(model, harmonics, ds_max: float, ground: float | None) -> list[di
     return rows
 
 
-def _powers(model, n: int, f: float, forces, ds_max: float, ground: float | None):
+def _powers(model, n: int, f: float, forces, ds_max: float, ground: float | None, n_phi: int | None = None):
     """BEM powers (free, ground) [W] of harmonic n at f for complex RMS force pairs ``forces``, and the
     mesh's vertex count and wall times."""
     from postprocess.wheel_bem import normal_velocity
@@ -79,7 +80,7 @@ def _powers(model, n: int, f: float, forces, ds_max: float, ground: float | None
 
     modes = model.meta["modes"]
     idx = model.groups[list(model.harmonics).index(n)]
-    V, T, phi, loop, nrm = wheel_mesh(model, n, f, ds_max)
+    V, T, phi, loop, nrm = wheel_mesh(model, n, f, ds_max, n_phi)
     vns = [math.sqrt(2) * normal_velocity(model, np.asarray(modes["shapes"], float), idx, loop, nrm, phi, np.pi, f,
                                           F2, F3, n)
            for F2, F3 in forces]
@@ -94,6 +95,28 @@ def _powers(model, n: int, f: float, forces, ds_max: float, ground: float | None
                                                   [np.concatenate([v, v]) for v in vns], model.rho, model.c0)]
         t_gr = time.perf_counter() - t0
     return free, gr, len(V), t_free, t_gr
+
+
+CONVERGENCE = ((0.03, None), (0.03, 36), (0.015, 24), (0.015, 36))
+
+
+def convergence_rows(model, n: int = 2) -> list[dict]:
+    """Mesh convergence of the free-field Delta L_W of (n,0,a) (unit lateral force): the element size
+    along the outline and the number of vertices around (``CONVERGENCE``)."""
+    from postprocess.force_radiation import harmonic_power
+    from solvers import bem
+
+    i = [j for j in range(len(model.f_r)) if model.n[j] == n and model.m[j] == 0 and model.cls[j] == "a"][0]
+    f = float(model.f_r[i])
+    W_s = float(harmonic_power(model, f, 1.0, 0.0)[list(model.harmonics).index(n), 0])
+    rows = []
+    for ds, n_phi in CONVERGENCE:
+        free, _, nv, t_free, _ = _powers(model, n, f, [(1.0, 0.0)], ds, None, n_phi)
+        n_around = n_phi or len(wheel_mesh(model, n, f, ds)[2]) // len(wheel_mesh(model, n, f, ds)[3])
+        rows.append({"mode": f"({n},0,a)", "ds_max": ds, "n_phi": n_around, "vertices": nv,
+                     "dL_free": bem.level(free[0]) - bem.level(W_s), "wall_s": t_free})
+        log.info("%s", rows[-1])
+    return rows
 
 
 def default_case_row(model, ds_max: float, ground: float | None) -> dict:
@@ -169,13 +192,23 @@ lateral or radial force at the contact point at the (n,0,a) eigenfrequency, from
 velocities; bore clamped (zero velocity). Ground: rigid, {'' if ground is None else f'{ground * 1e3:.0f} mm'} below
 the contact point (an image wheel; the wheel's axis horizontal, the contact at the bottom). Delta = L_W(BEM) -
 L_W(radiation stage) for harmonic n. The reference (thesis sec. 5.1) found 0.5 to 4 dB with the simple model
-higher, i.e. Delta between -4 and -0.5 dB. Wall times on a shared 2-core machine (load ~10), numba backend,
+higher, i.e. Delta between -4 and -0.5 dB. Wall times on a shared 2-core machine (load 4-10 during these runs), numba backend,
 including bempp's compilation in the first row.
 
 {table}
 
 {summary}
 """
+    conv = ""
+    if (out / "convergence.csv").exists():
+        with open(out / "convergence.csv", newline="") as fh:
+            cr = list(csv.DictReader(fh))
+        conv = ("Mesh convergence of (2,0,a), unit lateral force, free field (`--convergence`):\n\n"
+                "| element size along the outline (mm) | vertices around | vertices | Delta free (dB) | wall (s) |\n"
+                "|---|---|---|---|---|\n" + "\n".join(
+                    f"| {1e3 * float(r['ds_max']):.0f} | {r['n_phi']} | {r['vertices']} | {float(r['dL_free']):+.2f} | "
+                    f"{float(r['wall_s']):.0f} |" for r in cr) + "\n")
+        text += "\n" + conv
     with atomic_write(ROOT / "docs" / "validation" / "72_bem_wheel.md") as tmp:
         tmp.write_text(text)
 
@@ -188,11 +221,18 @@ def main(argv=None) -> int:
     ap.add_argument("--ds-max", type=float, default=0.03, help="largest element size along the outline (m)")
     ap.add_argument("--no-ground", action="store_true", help="free field only")
     ap.add_argument("--default-case", action="store_true", help="also the default case's limit cycle")
+    ap.add_argument("--convergence", action="store_true", help="only the mesh convergence of (2,0,a) (free field)")
     ap.add_argument("--from-csv", action="store_true", help="only rewrite the fragment from build/studies/bem/wheel.csv")
     a = ap.parse_args(argv)
     logging.basicConfig(level=logging.INFO, format="%(levelname)s %(name)s: %(message)s")
     ground = None if a.no_ground else GROUND_BELOW_CONTACT
     if a.from_csv:
+        write([], ground, a.ds_max)
+        return 0
+    if a.convergence:
+        from .study.limit_cycle import save_csv
+
+        save_csv(paths.build() / "studies" / "bem" / "convergence.csv", convergence_rows(load_radiation_model("default")))
         write([], ground, a.ds_max)
         return 0
     model = load_radiation_model("default")
