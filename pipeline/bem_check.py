@@ -97,22 +97,26 @@ def _powers(model, n: int, f: float, forces, ds_max: float, ground: float | None
     return free, gr, len(V), t_free, t_gr
 
 
-CONVERGENCE = ((0.03, None), (0.03, 36), (0.015, 24), (0.015, 36))
+CONVERGENCE = ((0.03, None), (0.03, 36), (0.015, 24), (0.015, 36), (0.03, 48), (0.015, 48))
 
 
-def convergence_rows(model, n: int = 2) -> list[dict]:
+def convergence_rows(model, n: int = 2, done: list[dict] = ()) -> list[dict]:
     """Mesh convergence of the free-field Delta L_W of (n,0,a) (unit lateral force): the element size
-    along the outline and the number of vertices around (``CONVERGENCE``)."""
+    along the outline and the number of vertices around (``CONVERGENCE``); meshes in ``done`` (rows of
+    an earlier run) are kept, not recomputed."""
     from postprocess.force_radiation import harmonic_power
     from solvers import bem
 
     i = [j for j in range(len(model.f_r)) if model.n[j] == n and model.m[j] == 0 and model.cls[j] == "a"][0]
     f = float(model.f_r[i])
     W_s = float(harmonic_power(model, f, 1.0, 0.0)[list(model.harmonics).index(n), 0])
-    rows = []
+    rows = list(done)
+    have = {(round(float(r["ds_max"]), 4), int(float(r["n_phi"]))) for r in rows}
     for ds, n_phi in CONVERGENCE:
-        free, _, nv, t_free, _ = _powers(model, n, f, [(1.0, 0.0)], ds, None, n_phi)
         n_around = n_phi or len(wheel_mesh(model, n, f, ds)[2]) // len(wheel_mesh(model, n, f, ds)[3])
+        if (round(ds, 4), n_around) in have:
+            continue
+        free, _, nv, t_free, _ = _powers(model, n, f, [(1.0, 0.0)], ds, None, n_phi)
         rows.append({"mode": f"({n},0,a)", "ds_max": ds, "n_phi": n_around, "vertices": nv,
                      "dL_free": bem.level(free[0]) - bem.level(W_s), "wall_s": t_free})
         log.info("%s", rows[-1])
@@ -232,7 +236,12 @@ def main(argv=None) -> int:
     if a.convergence:
         from .study.limit_cycle import save_csv
 
-        save_csv(paths.build() / "studies" / "bem" / "convergence.csv", convergence_rows(load_radiation_model("default")))
+        path = paths.build() / "studies" / "bem" / "convergence.csv"
+        done = []
+        if path.exists():
+            with open(path, newline="") as fh:
+                done = list(csv.DictReader(fh))
+        save_csv(path, convergence_rows(load_radiation_model("default"), done=done))
         write([], ground, a.ds_max)
         return 0
     model = load_radiation_model("default")
