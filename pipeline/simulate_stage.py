@@ -34,16 +34,25 @@ def case_preload(c: dict, con) -> float:
     return float(con["preload_normal"]) if "preload_normal" in files else c["loading"]["preload"]
 
 
-def run_simulate(case: str) -> dict:
-    from solvers.interaction import WheelModes, contact_model, simulate
-
-    from .friction import case_friction
+def case_arrays(case: str):
+    """(case, this stage's config, contact arrays, greens arrays, WheelModes) of a case, each artifact
+    checked against the case's configuration (the simulate and stability stages' inputs)."""
+    from solvers.interaction import WheelModes
 
     c, ccfg, gcfg, cfg = simulate_config(case)
     out = paths.case_dir(case)
     con, _ = artifacts.load_npz(out / "contact.npz", "contact", ccfg, make_target=f"contact CASE={case}")
     gr, _ = artifacts.load_npz(out / "greens.npz", "greens", gcfg, make_target=f"greens CASE={case}")
-    wheel = WheelModes(gr["wheel_f"], gr["wheel_mass"], gr["wheel_zeta"], gr["wheel_phi"])
+    return c, cfg, con, gr, WheelModes(gr["wheel_f"], gr["wheel_mass"], gr["wheel_zeta"], gr["wheel_phi"])
+
+
+def run_simulate(case: str) -> dict:
+    from solvers.interaction import contact_model, simulate
+
+    from .friction import case_friction
+
+    c, cfg, con, gr, wheel = case_arrays(case)
+    out = paths.case_dir(case)
     cm = contact_model(con, case_friction(c, case))
     if c["contact"].get("points", 1) == 2:  # [contact] points = 2: the two-point loop (pipeline/two_point_simulate.py)
         from .two_point_simulate import simulate_two_point_case

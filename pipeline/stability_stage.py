@@ -25,18 +25,14 @@ log = logging.getLogger("pipeline.stability")
 def case_linear_model(case: str, mu: float | None = None, gamma_y: float | None = None):
     """(case dict, LinearModel, mode labels, modes' open-loop frequencies) of a case, optionally at
     another friction coefficient or creepage than the case's."""
-    from solvers.interaction import WheelModes, contact_model
+    from solvers.interaction import contact_model
     from solvers.stability import linearise
 
-    from .simulate_stage import case_preload, simulate_config
+    from .simulate_stage import case_arrays, case_preload
 
-    c, ccfg, gcfg, _ = simulate_config(case)
-    out = paths.case_dir(case)
-    con, _ = artifacts.load_npz(out / "contact.npz", "contact", ccfg, make_target=f"contact CASE={case}")
-    gr, gprov = artifacts.load_npz(out / "greens.npz", "greens", gcfg, make_target=f"greens CASE={case}")
+    c, _, con, gr, wheel = case_arrays(case)
     modes, _ = artifacts.load_npz(paths.wheel_dir(c["wheel"]) / "modes.npz", "wheel-modes")
     labels = np.array([f"({n},{m},{k})" for n, m, k in zip(modes["n"], modes["m"], modes["cls"])])
-    wheel = WheelModes(gr["wheel_f"], gr["wheel_mass"], gr["wheel_zeta"], gr["wheel_phi"])
     if mu is None:
         from .friction import case_friction
 

@@ -102,15 +102,10 @@ def two_point_roots(c: dict, con, gr, wheel, cm) -> list:
 
 def case_two_point_roots(case: str) -> list:
     """``two_point_roots`` of a case from its artifacts (the stability stage's two-point screen)."""
-    from solvers.interaction import WheelModes, contact_model
+    from solvers.interaction import contact_model
 
-    from . import artifacts, paths
     from .friction import case_friction
-    from .simulate_stage import simulate_config
+    from .simulate_stage import case_arrays
 
-    c, ccfg, gcfg, _ = simulate_config(case)
-    out = paths.case_dir(case)
-    con, _ = artifacts.load_npz(out / "contact.npz", "contact", ccfg, make_target=f"contact CASE={case}")
-    gr, _ = artifacts.load_npz(out / "greens.npz", "greens", gcfg, make_target=f"greens CASE={case}")
-    wheel = WheelModes(gr["wheel_f"], gr["wheel_mass"], gr["wheel_zeta"], gr["wheel_phi"])
+    c, _, con, gr, wheel = case_arrays(case)
     return two_point_roots(c, con, gr, wheel, contact_model(con, case_friction(c, case)))
