@@ -50,11 +50,13 @@ def scan_table(rows: list[dict]) -> str:
     return "\n".join(out)
 
 
-def compliance_table(rows: list[dict]) -> str:
-    out = ["| A1, A2 x | L_F2 (dB) | f (Hz) | L_W (dB) | s_knee (m/s) | dip below s0 (m/s) | partial slip |",
+def sensitivity_table(rows: list[dict], key: str, label: str) -> str:
+    """The limit cycle's measures per variant (``key`` of each row, headed ``label``): the compliance
+    factor or the friction curve's node count."""
+    out = [f"| {label} | L_F2 (dB) | f (Hz) | L_W (dB) | s_knee (m/s) | dip below s0 (m/s) | partial slip |",
            "|---|---|---|---|---|---|---|"]
     for r in rows:
-        out.append(f"| {r['factor']} | {r['L_F2']:.2f} | {r['f_dominant']:.2f} | {_f(r['L_W'], '.2f')} | "
+        out.append(f"| {r[key]} | {r['L_F2']:.2f} | {r['f_dominant']:.2f} | {_f(r['L_W'], '.2f')} | "
                    f"{r['s_knee']:.4f} | {r['s2_swing_down']:.4f} | {100 * r['share_partial']:.1f} % |")
     return "\n".join(out)
 
@@ -89,15 +91,6 @@ def scale_check(rows: list[dict]) -> tuple[str, dict]:
             f"{min(v['need140'] for v in d.values() if isinstance(v, dict)) / cap:.1f}-"
             f"{max(v['need140'] for v in d.values() if isinstance(v, dict)) / cap:.1f} times that, a creepage "
             f"far beyond the map (or a cycle not bounded by the friction curve's knee).", d)
-
-
-def curve_table(rows: list[dict]) -> str:
-    out = ["| curve nodes | L_F2 (dB) | f (Hz) | L_W (dB) | s_knee (m/s) | dip below s0 (m/s) | partial slip |",
-           "|---|---|---|---|---|---|---|"]
-    for r in rows:
-        out.append(f"| {r['nodes']} | {r['L_F2']:.2f} | {r['f_dominant']:.2f} | {_f(r['L_W'], '.2f')} | "
-                   f"{r['s_knee']:.4f} | {r['s2_swing_down']:.4f} | {100 * r['share_partial']:.1f} % |")
-    return "\n".join(out)
 
 
 def write_doc(cycles, records, comp, scan, slices, curves) -> Path:
@@ -172,7 +165,7 @@ at -10 mm between mu = 0.15 and 0.6) raises L_F2 at nearly constant L_W.
 **Tangential compliance** (the default case, A1 and A2 scaled, the model otherwise unchanged; the
 thesis reports its results insensitive to the factor of 2 of [4.32]-[4.35]):
 
-{compliance_table(comp)}
+{sensitivity_table(comp, "factor", "A1, A2 x")}
 
 L_W changes by {c0[2.0]['L_W'] - c0[1.0]['L_W']:+.2f} dB for x 2 and {c0[0.5]['L_W'] - c0[1.0]['L_W']:+.2f} dB for x 0.5: the
 compliance does not set the bound (the knee is the friction curve's, which the compliance does not move).
@@ -181,7 +174,7 @@ compliance does not set the bound (the knee is the friction curve's, which the c
 static pressure, `solvers.contact.friction.rf_curve`, at the contact stage's 18 + 5 nodes and at twice
 as many): the knee and the limit cycle move by
 
-{curve_table(curves)}
+{sensitivity_table(curves, "nodes", "curve nodes")}
 
 so the sampling and the monotone Hermite interpolation of the curve do not set the level either.
 
