@@ -6,7 +6,7 @@ read: abstracts and excerpts, cited by address) is ``None`` and shows as "n/s". 
 to these observations.  ``model`` names the closest configuration the tool can model: the
 base curve (its vehicle, rail and friction), radius (m) and speed (km/h; None: the design rule's of
 ``pipeline.verdict.radius``, whose cant rule holds for all) -- a verdict of the curve stage there.
-The project ships a metro vehicle on the C20 wheel and a freight bogie (Y25, 920 mm wheel, 60E1): the
+The project ships a metro vehicle on the C20 wheel and a freight bogie (Y25, 920 mm wheel, BV50 new): the
 heavy-haul observation is compared with the freight bogie, every other one with the metro vehicle
 (trams and other cars differ in wheel, bogie and load: stated).  Each row says which of radius, speed,
 squeal frequency and level (with distance and metric) its source states ('stated': R V f L, 'l' for a relative
@@ -309,6 +309,7 @@ def main(argv=None) -> int:
     from pathlib import Path
 
     from .. import paths
+    from ..artifacts import ArtifactError
     from ..atomic import save_text
     from ..config import ConfigError
     from .radius import curve_verdict
@@ -324,14 +325,14 @@ def main(argv=None) -> int:
         if m and m not in verdicts:
             try:
                 verdicts[m] = verdict_of(curve_verdict(m[0], folder, m[1], m[2], reuse=not args.rerun))
-            except ConfigError as e:             # e.g. no steady curving state: stated in the table
+            except (ConfigError, ArtifactError) as e:   # no steady curving state, an artifact not built: stated
                 verdicts[m] = {"error": str(e).split(": ", 1)[-1]}
     md = ("## Against the field: published observations of curve squeal\n\n"
           "Published field observations (vehicle, curve radius, speed, measured squeal frequency and level with "
           "its distance and metric, as far as the source states them; n/s: not stated in the text that could be "
           "read) beside the curve stage's verdict (`make curve`) for the closest configuration the tool can model: "
           "the C20 metro vehicle (`geometry/vehicles/c20_metro.toml`) on the BV50 rail with mu = 0.35 (the heavy-haul "
-          "row: the Y25 freight bogie of `pipeline/curves/y25_r300.toml` on 60E1), at the "
+          "row: the Y25 freight bogie of `pipeline/curves/y25_r300.toml` on the new BV50 head), at the "
           "observation's radius and speed (the design rule's speed and cant of `pipeline/verdict/radius.py` where "
           "the source gives none).  Nothing is fitted to these observations; the differences are stated.\n\n"
           + table_markdown(verdicts) + "\n\n" + tally(verdicts) + "\n\n" + NOTES +
