@@ -349,10 +349,10 @@ NOTES = """What the comparison can and cannot say:
   source's paraphrase is not.
 * Occurrence: the sources that state where squeal is (not) expected (radius rules) are compared with the
   tool's verdict at those radii; one metro vehicle and one friction coefficient cannot stand for the spread of
-  vehicles, wheel profiles and rail conditions behind those rules.  Where a source states no radius, the tool's
-  vehicle is run at 50 m, in the class 25-50 m where the STUVA survey of urban-rail curves found the largest
-  increase by squeal; where it states a class (< 500 m), at 50 m as well (the tool's vehicle squeals only at 50
-  and 75 m).
+  vehicles, wheel profiles and rail conditions behind those rules.  Where an urban-rail or tram source states no
+  radius (or only a class, < 500 m), the tool's vehicle is run at 50 m, in the class 25-50 m where the STUVA survey
+  of urban-rail curves found the largest increase by squeal (yard curves: 75 m; Rudd's transit cars: the shipped
+  150 m case); the tool's vehicle squeals only at 50 and 75 m.
 * Frequency: the tool's squeal frequency is a C20 wheel mode; a tram's resilient wheel or another wheel
   squeals at its own modes, so a frequency difference there reflects the wheel, not the model.
 * Level: the tool's L_pA is that of the squealing wheel alone at 7.5 m and 1.2 m (ISO 3095 position; rigid
