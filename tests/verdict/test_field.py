@@ -21,6 +21,9 @@ def test_stated_marks_each_quantity():
     assert F.stated(obs(f_hz="780-800")) == "- - f -"
     assert F.complete(obs(radius_m=25.0, speed_kmh=12.0, f_hz="1500", level="80 dB(A) at 7.5 m"))
     assert not F.complete(obs(radius_m=25.0, speed_kmh=12.0, level="80 dB(A) at 7.5 m"))
+    # a relative level (an increase over rolling noise, a reduction) is marked 'l' and is not complete
+    rel = obs(radius_m=25.0, speed_kmh=12.0, f_hz="1500", level="8 dB(A) above rolling noise", level_partial=True)
+    assert F.stated(rel) == "R V f l" and not F.complete(rel)
 
 
 def test_level_compared_only_at_7p5_m():
@@ -32,6 +35,12 @@ def test_level_compared_only_at_7p5_m():
     assert F.level_difference(near, verdict()).startswith("not compared")
     assert F.level_difference(o, verdict(squeals=False)).startswith("not compared")
     assert F.level_difference(obs(), verdict()) == "-"
+    # a measured range: the distance to the nearer bound (87.1 - 100 = -12.9 dB), or inside it
+    rng = obs(level="100-105 dB(A) at 7.5 m", L_7p5=(100.0, 105.0))
+    assert F.level_difference(rng, verdict()) == "-12.9 dB from the measured range 100-105 dB(A)"
+    assert F.level_difference(rng, verdict(L_pA=107.5)) == "+2.5 dB from the measured range 100-105 dB(A)"
+    assert F.level_difference(rng, verdict(L_pA=101.0)).startswith("inside the measured range")
+    assert F.level_compared(rng, verdict()) and not F.level_compared(rng, verdict(squeals=False))
 
 
 def test_frequency_difference_from_the_measured_range():
