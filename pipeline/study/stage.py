@@ -34,9 +34,9 @@ log = logging.getLogger("pipeline.study")
 
 def _kind_module(kind: str):
     """The module that runs a study of this kind: ``run(spec, src, out, ...)``."""
-    from . import contact, damping, map
+    from . import contact, damping, line, map
 
-    return {"map": map, "damping": damping, "contact": contact}[kind]
+    return {"map": map, "damping": damping, "contact": contact, "line": line}[kind]
 
 
 def load_study(name: str) -> tuple[dict, str]:
@@ -52,7 +52,7 @@ def load_study(name: str) -> tuple[dict, str]:
     spec = load(path, schema)                        # an unknown kind fails here, naming the key
     if spec["kind"] not in KINDS:                    # pragma: no cover - the schema's choices catch it
         raise ConfigError(str(path), [("kind", spec["kind"], f"one of {list(KINDS)}")])
-    for case in spec["cases"]:
+    for case in spec.get("cases", []):              # a line study names curves instead (pipeline/study/line.py)
         if not paths.case_file(case).exists():
             raise ConfigError(str(path), [("cases", case, f"a case in {paths.cases()}: "
                                                           f"{paths.available(paths.cases())}")])

@@ -76,9 +76,9 @@ def wheel_at_contact(pw: dict, modes: dict, y_w: float) -> dict:
 def screen_context(case: str):
     """The ``pipeline.study.context.CaseContext`` of a case from arrays computed here (module notes)."""
     from ..case import resolve_case
-    from ..config import config_hash
     from ..contact_stage import build_contact
-    from ..greens_stage import rail_greens, rail_point
+    from ..greens_stage import rail_point
+    from .rail_point import rail_arrays
     from ..study.context import CaseContext
 
     t0 = time.perf_counter()
@@ -94,7 +94,7 @@ def screen_context(case: str):
     arrays = wheel_at_contact(pw, modes, geo.contact.y_wheel)
     t0 = _tick("wheel", t0)
     yr = rail_point(c["rail"], pr, geo.contact.y_rail, case)
-    rail, _ = rail_greens(pr, config_hash(pr), yr, v, dt)
+    rail = rail_arrays(pr, yr, v, dt)
     arrays["rail_kernel"] = rail["rail_kernel"]
     _tick("rail kernel", t0)
     wheel = {"f": arrays["wheel_f"], "mass": arrays["wheel_mass"], "zeta": arrays["wheel_zeta"],
