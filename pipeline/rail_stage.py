@@ -11,7 +11,6 @@ Artifacts in build/rails/<name>/ (keys in the README):
 from __future__ import annotations
 
 import logging
-import os
 import time
 
 import numpy as np
@@ -20,7 +19,7 @@ from solvers.constants import F_MAX_HZ, RAIL_F_MIN_HZ
 
 from . import artifacts, paths
 from .atomic import save_figure
-from .config import config_hash, load_geometry
+from .config import load_geometry
 from .schemas import RAIL
 
 log = logging.getLogger("pipeline.rail")
@@ -50,25 +49,13 @@ def rail_mesh(p: dict):
     from geometry.rail_mesh import mesh_rail
 
     path = paths.rail_dir(p["name"]) / "section.msh"
-    key = (config_hash(p), str(path))
-    if path.exists() and _MESHED.get(key) == _stat(path):   # meshed and compared in this process, unchanged since
-        return path
     with tempfile.TemporaryDirectory() as d:
         new = f"{d}/section.msh"
         mesh_rail(p, new)
         if not (path.exists() and filecmp.cmp(new, path, shallow=False)):
             with artifacts.atomic_write(path) as tmp:
                 shutil.copyfile(new, tmp)
-    _MESHED[key] = _stat(path)
     return path
-
-
-_MESHED: dict = {}   # rail_mesh's memo (a line study's worker asks for the same rail for every wheel)
-
-
-def _stat(path) -> tuple:
-    s = os.stat(path)
-    return (s.st_mtime_ns, s.st_size, s.st_ino)
 
 
 def run_rail(name: str) -> dict:

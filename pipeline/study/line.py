@@ -71,12 +71,6 @@ def tasks_of(spec: dict, rows: list[LineRow], folder: Path) -> list[Task]:
                  LineTask(names[row.key], tuple(row_inputs(row).items()))) for row in rows]
 
 
-def rails_of(folder: Path, tasks) -> tuple:
-    import tomllib
-
-    return tuple(sorted({tomllib.loads((folder / f"{t.params.curve}.toml").read_text())["rail"] for t in tasks}))
-
-
 def row_inputs(row: LineRow) -> dict:
     return {"id": row.id, "chainage_m": row.chainage_m, "radius_m": row.radius_m, "cant_mm": row.cant_mm,
             "length_m": row.length_m, "speed_kmh": row.speed_kmh, "vehicle": row.vehicle,
@@ -97,7 +91,7 @@ def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool 
         from .line_worker import line_case, prepare_worker
 
         dask = client.get()
-        dask.run(prepare_worker, rails_of(folder, todo))
+        dask.run(prepare_worker)
         r = run_tasks(tasks, line_case, table, dask, {"line": LineContext(str(folder), spec["what_ifs"])},
                       desc=spec["name"], progress=progress)
         stats |= {"run_wall_s": round(r.wall, 3), "dask_workers": r.workers}

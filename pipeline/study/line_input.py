@@ -156,8 +156,15 @@ def read_rows(spec: dict, path: Path | None = None) -> list[LineRow]:
     if not rows and not problems:
         problems.append((f"line {head_no + 1}", "", "at least one curve"))
     if problems:
-        raise ConfigError(str(path), problems)
+        raise problems_error(path, problems)
     return rows
+
+
+def problems_error(path, problems) -> ConfigError:
+    """One ConfigError with one line per problem, each naming the file, the line and column, the value
+    and what is allowed."""
+    lines = [f"{k} = {v!r}: expected {a}" for k, v, a in problems]
+    return ConfigError(str(path), detail=f"\n{path}: ".join(lines))
 
 
 def curve_data(spec: dict, row: LineRow, name: str) -> dict:
@@ -172,7 +179,10 @@ def curve_data(spec: dict, row: LineRow, name: str) -> dict:
                 description=f"line {spec['name']}, curve {row.id} at {row.chainage_m:g} m ({row.length_m:g} m long), "
                             f"{row.vehicle}, friction {row.condition}")
     data["friction"] = {"law": "coulomb", "mu": row.mu}
-    validate(data, CURVE, f"{curves_file(spec)}: line {row.line}")
+    try:
+        validate(data, CURVE, f"{curves_file(spec)}: line {row.line}")
+    except ConfigError as e:
+        raise problems_error(curves_file(spec), [(f"line {row.line}, {k}", v, a) for k, v, a in e.errors]) from None
     return data
 
 

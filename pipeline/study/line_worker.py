@@ -97,16 +97,10 @@ def thread_safe_gmsh() -> None:
     gmsh.signal = _MainThreadSignal()
 
 
-def prepare_worker(rails: tuple) -> int:
-    """Run on every worker in its main thread (``Client.run``) before the rows: the rails' section
-    meshes (``rail_stage.rail_mesh``, memoised per process), which the rail kernels ask for.  Debian's
-    gmsh sets and restores a SIGINT handler on import and finalize, which only the main thread may do,
-    and the rows run in the worker's task thread."""
-    from ..rail_stage import load_rail_params, rail_mesh
-
+def prepare_worker() -> int:
+    """Run on every worker in its main thread (``Client.run``) before the rows: ``thread_safe_gmsh``
+    (the rows run in the worker's task thread; the greens stage meshes the rail section with gmsh)."""
     thread_safe_gmsh()
-    for rail in rails:
-        rail_mesh(load_rail_params(rail)[0])
     return os.getpid()
 
 
