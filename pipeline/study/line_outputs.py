@@ -13,7 +13,8 @@ from .line_worker import band_columns
 
 OUT_COLUMNS = ["id", "chainage_m", "radius_m", "cant_mm", "length_m", "speed_kmh", "vehicle", "friction", "mu",
                "squeals", "wheel", "f_squeal", "mode", "L_pA", "L_W", "L_F2", "squealing_wheels", "unstable_wheels",
-               "time_loop_wheels", "cnossos_dB", "cnossos_vs_physics", "schall03_dB", "schall03_vs_physics"]
+               "time_loop_wheels", "cnossos_dB", "cnossos_vs_physics", "schall03_dB", "schall03_vs_physics", "curve",
+               "note"]
 
 
 def _f(x, fmt=".1f") -> str:
