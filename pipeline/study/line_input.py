@@ -46,6 +46,14 @@ NUMERIC = {
 }
 MU = CURVE["friction"]["mu"]
 CONDITIONS = ("dry", "wet")
+# the CSV's columns as a schema (docs/inputs.md; the rows are checked by ``read_rows``)
+ROW_SCHEMA = {
+    "id": Field(str, doc="the curve's name on the line; one row per id, vehicle and friction condition"),
+    **NUMERIC,
+    "vehicle": Field(str, doc="geometry/vehicles/<vehicle>.toml"),
+    "friction": Field(str, doc="'dry' or 'wet' (the study file's [friction] dry_mu, wet_mu) or a Coulomb "
+                               "coefficient 0 < mu <= 1"),
+}
 
 
 @dataclass(frozen=True)
