@@ -1,5 +1,8 @@
-"""The moving rail kernel at a point of the rail file's ``contact.y`` list for a new speed, with the
-point's wave table cached (the line study: many speeds at the same few points).
+"""The moving rail kernel for a new speed, as the greens stage makes it, for a line study's many curves.
+
+At a point of the rail file's ``contact.y`` list, with the point's wave table cached (many speeds at the
+same few points); at any other point, with the running surface's table files held in memory per
+process (``surface_arrays``).
 
 ``rail_kernel.rail_kernel`` builds a listed point's kernel for each new speed from scratch: the
 waveguide model of the rail and its wave table on Kropp's grid (~15 s), then the moving sum (~1 s).
@@ -111,13 +114,65 @@ def listed_kernel(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, gri
     return arrays
 
 
+_SURFACE: dict = {}        # surface_kernel's table files held per process: (path, mtime) -> arrays
+_SURFACE_MAX = 24          # node files kept (18 MB each on BV50)
+
+
+def _held(path, kind: str, cfg: dict, key: str):
+    st = path.stat()
+    k = (str(path), st.st_mtime_ns)
+    if k not in _SURFACE:
+        if len(_SURFACE) >= _SURFACE_MAX:
+            _SURFACE.pop(next(iter(_SURFACE)))
+        a, _ = artifacts.load_npz(path, kind, cfg)
+        _SURFACE[k] = a[key] if key else dict(a)
+    return _SURFACE[k]
+
+
+def surface_arrays(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, grid: dict, taper) -> dict | None:
+    """``rail_surface.surface_kernel``'s arrays at a point off the listed ones, with the surface table's
+    files (its waves and the node shapes) held in memory per process: the same calls on the same arrays
+    (bit for bit).  None when the surface table is not built yet (``surface_kernel`` builds it)."""
+    from solvers.moving_kernel import mirror
+    from solvers.rail_surface import point_amplitudes, point_weights
+
+    from ..code_hash import code_hash
+    from ..rail_kernel import kernel_config, kernel_path
+    from ..rail_stage import rail_mesh
+    from ..rail_surface import KERNEL_CODE, KIND_KERNEL, KIND_NODE, KIND_WAVES, kernel_from_waves, table_config
+    from ..rail_surface import table_dir
+
+    rail_mesh(pr)
+    tcfg = table_config(pr, rail_hash, dt, grid)
+    cfg = dict(kernel_config(pr, rail_hash, y_r, v, dt, grid), surface=tcfg["surface"],
+               surface_kernel=code_hash(KERNEL_CODE))
+    path = kernel_path(pr["name"], cfg)
+    try:
+        arrays, _ = artifacts.load_npz(path, KIND_KERNEL, cfg)
+    except artifacts.ArtifactError:
+        folder = table_dir(pr["name"], tcfg)
+        if not (folder / "waves.npz").exists():
+            return None
+        w = _held(folder / "waves.npz", KIND_WAVES, tcfg, "")
+        idx, N = point_weights(w["y_nodes"], w["vertex"], abs(float(y_r)))
+        psi = np.stack([_held(folder / f"node_{i}.npz", KIND_NODE, tcfg, "psi") for i in idx], axis=2)
+        arrays = kernel_from_waves(w["k"], point_amplitudes(psi, np.arange(3), N), v, dt, grid, taper)
+        artifacts.save_npz(path, KIND_KERNEL, cfg, **arrays)
+    if y_r < 0:
+        arrays = dict(arrays)
+        for key in ("rail_kernel", "rail_fixed_kernel", "rail_point_receptance"):
+            arrays[key] = mirror(arrays[key])
+    return arrays
+
+
 def rail_arrays(pr: dict, y_r: float, v: float, dt: float) -> dict:
     """``greens_stage.rail_greens``'s arrays at the rail model's point y_r (``greens_stage.rail_point``),
     a listed point's through ``listed_kernel``."""
     from ..config import config_hash
     from ..greens_stage import RAIL_F_MAX, RAIL_F_TAPER, RAIL_LAGS, RAIL_NT, rail_greens, rail_taper
 
+    grid = {"n_t": RAIL_NT, "n_lags": RAIL_LAGS, "f_max": RAIL_F_MAX, "f_taper": RAIL_F_TAPER}
     if np.any(np.abs(np.abs(np.asarray(pr["contact"]["y"], float)) - abs(y_r)) < 1e-12):
-        grid = {"n_t": RAIL_NT, "n_lags": RAIL_LAGS, "f_max": RAIL_F_MAX, "f_taper": RAIL_F_TAPER}
         return listed_kernel(pr, config_hash(pr), y_r, v, dt, grid, rail_taper)
-    return rail_greens(pr, config_hash(pr), y_r, v, dt)[0]
+    held = surface_arrays(pr, config_hash(pr), y_r, v, dt, grid, rail_taper)
+    return held if held is not None else rail_greens(pr, config_hash(pr), y_r, v, dt)[0]
