@@ -3,7 +3,8 @@
 
 A study is defined by pipeline/studies/<NAME>.toml (schemas in pipeline/study/schemas.py):
 ``kind = "map"`` (creepage/friction map, pipeline/study/map.py), ``"damping"`` (wheel modal
-damping study, damping.py) or ``"contact"`` (contact-model validation, contact.py).  The cases
+damping study, damping.py), ``"contact"`` (contact-model validation, contact.py) or ``"line"`` (a line of
+curves, each curve's verdict screen first and the noise-mapping rules beside it, line.py).  The cases
 run on Dask (pipeline/study/runner.py),
 their rows are appended to the study's table as they finish; rerunning the command resumes an
 interrupted study and only renders the outputs of a finished one.
