@@ -10,9 +10,10 @@ runs the time loop for every wheel with lateral creepage.  Here, per wheel of th
    kernel from the rail's shared cache (``greens_stage.rail_greens``, built there when new).  No
    artifact and no figure is written for a wheel the screen finds stable; its screen numbers are the
    curve stage's, bit for bit (tests/verdict/test_screen_first.py);
-2. only where the screen finds a growing wheel-mode pole: the curve stage's own wheel verdict
-   (``stage.wheel_verdict``: the contact, greens and simulate stages, and radiate and listen where the
-   time loop squeals), so a squealing wheel's numbers are ``make curve``'s.
+2. only where the screen finds a growing wheel-mode pole: the time loop, as the simulate stage calls it
+   (``time_loop_L_F2``: the same numbers, no files); where it squeals (L_F2 >= 10 dB, SPEC 6), the curve
+   stage's own wheel verdict (``stage.wheel_verdict``: the contact, greens, simulate, radiate and listen
+   stages), so a squealing wheel's numbers and files are ``make curve``'s.
 
 The difference from ``make curve``: a wheel the screen calls stable is not run in the time loop (its
 ``L_F2`` is empty).  The time loop could still make such a wheel squeal (a finite disturbance the
@@ -108,22 +109,41 @@ def screen_context(case: str):
 
 
 def screen(case: str, gamma_y: float):
-    """(fastest growing wheel-mode pole or None, its mode label) of a curve wheel, as
-    ``stage.screen_wheel`` finds it, from ``screen_context``."""
+    """(fastest growing wheel-mode pole or None, its mode label, the CaseContext or None) of a curve
+    wheel, as ``stage.screen_wheel`` finds it, from ``screen_context``."""
     from solvers.mitigation import growing_wheel_root
 
     from ..case import resolve_case
     from .mitigation import CaseModels
 
     if gamma_y == 0.0:
-        return None, ""
+        return None, "", None
     ctx = screen_context(case)
     t0 = time.perf_counter()
     spin = float(resolve_case(case).case["kinematics"].get("spin", 0.0))
     models = CaseModels.of_context(ctx, spin, ctx.friction)
     r = growing_wheel_root(models.roots(ctx.mu))
     _tick("screen", t0)
-    return r, (ctx.label(r.mode) if r is not None else "")
+    return r, (ctx.label(r.mode) if r is not None else ""), ctx
+
+
+def time_loop_L_F2(case: str, ctx) -> float:
+    """L_F2 (dB re 1 N) of the simulate stage's time loop of the case, from the screen's arrays: the
+    same call as ``simulate_stage.run_simulate`` (so the same number), without its files and figure."""
+    from solvers.interaction import WheelModes, contact_model, simulate
+
+    from ..case import resolve_case
+    from ..simulate_stage import case_preload
+
+    c = resolve_case(case).case
+    w = ctx.wheel
+    res = simulate(WheelModes(w["f"], w["mass"], w["zeta"], w["phi"]), ctx.rail_kernel,
+                   contact_model(ctx.contact, ctx.friction), dt=c["time"]["dt"], v=c["kinematics"]["speed"],
+                   gamma_y=c["kinematics"]["gamma_y"], gamma_x=c["kinematics"]["gamma_x"],
+                   spin=c["kinematics"].get("spin", 0.0), preload=case_preload(c, ctx.contact),
+                   duration=c["time"]["duration"], tangential=c["contact"]["model"], normal=c["contact"]["normal"],
+                   store_every=10)
+    return float(res.measures()["L_F2"])
 
 
 def quiet_row(p, root, label: str) -> dict:
@@ -142,6 +162,8 @@ def quiet_row(p, root, label: str) -> dict:
 def run_screen_first(curve: str, *, what_ifs: bool = False, write: bool = True) -> dict:
     """The verdict of ``curve`` screen first (module notes): {'rows': one per wheel (``stage.COLUMNS``,
     plus ``time_loop``: whether it ran), 'info': CurveInfo}; ``write``: build/curves/<curve>/verdict.csv."""
+    from solvers.study import squeals
+
     from .cases import wheel_case, write_case
     from .report import cell
     from .stage import COLUMNS, solve, wheel_verdict
@@ -156,13 +178,18 @@ def run_screen_first(curve: str, *, what_ifs: bool = False, write: bool = True) 
     rows = []
     for p in points:
         name = f"{info.name}/{p.wheel}"
-        root, label = screen(name, p.gamma_y)
-        t0 = time.perf_counter()
+        root, label, ctx = screen(name, p.gamma_y)
         if root is None:
             rows.append(quiet_row(p, root, label) | {"time_loop": False})
             continue
-        rows.append(wheel_verdict(info, p, what_ifs=what_ifs) | {"time_loop": True})
+        t0 = time.perf_counter()
+        L_F2 = time_loop_L_F2(name, ctx)
         t0 = _tick("time loop (unstable wheels)", t0)
+        if not squeals(L_F2):                 # the time loop overrules the screen: quiet, no stage to run
+            rows.append(quiet_row(p, root, label) | {"L_F2": L_F2, "time_loop": True})
+            continue
+        rows.append(wheel_verdict(info, p, what_ifs=what_ifs) | {"time_loop": True})
+        _tick("stages of squealing wheels", t0)
     if write:
         artifacts.save_csv(paths.curve_dir(curve) / "verdict.csv", COLUMNS,
                            ([cell(r[k]) for k in COLUMNS] for r in rows))
