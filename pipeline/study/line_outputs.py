@@ -22,8 +22,15 @@ def _f(x, fmt=".1f") -> str:
 
 
 def full_rows(done: list[dict]) -> list[dict]:
-    """The finished rows with the rules' columns."""
-    return [r | rule_columns(r["radius_m"], bool(r["squeals"])) for r in done]
+    """The finished rows with the rules' columns (a row without a verdict, its ``note`` set: the rules'
+    penalties, compared with nothing)."""
+    out = []
+    for r in done:
+        cols = rule_columns(r["radius_m"], bool(r["squeals"]))
+        if r.get("note"):
+            cols = {k: (v if k.endswith("_dB") else "not computed") for k, v in cols.items()}
+        out.append(r | cols)
+    return out
 
 
 def write_export(spec: dict, out: Path, rows: list[dict]) -> tuple[Path, int]:
@@ -65,12 +72,14 @@ def rule_table(rows: list[dict], rule: str, which: str) -> str:
     return "\n".join(lines) + "\n"
 
 
-def markdown(spec: dict, src: str, quick: bool, rows: list[dict], total: int, n_export: int) -> str:
+def markdown(spec: dict, src: str, quick: bool, every: list[dict], total: int, n_export: int) -> str:
+    rows = [r for r in every if not r.get("note")]
+    noted = [r for r in every if r.get("note")]
     sq = [r for r in rows if r["squeals"]]
     conds = sorted({r["friction"] for r in rows})
     head = f"# Line `{spec['name']}`{' (quick: first rows)' if quick else ''}: which curves squeal\n\n"
-    if len(rows) < total:
-        head += f"**{len(rows)} of {total} rows done** (rerun `make study STUDY={spec['name']}` to resume).\n\n"
+    if len(every) < total:
+        head += f"**{len(every)} of {total} rows done** (rerun `make study STUDY={spec['name']}` to resume).\n\n"
     by = "; ".join(f"{c}: {sum(1 for r in sq if r['friction'] == c)} of {sum(1 for r in rows if r['friction'] == c)}"
                    for c in conds)
     if sq:
@@ -87,6 +96,10 @@ def markdown(spec: dict, src: str, quick: bool, rows: list[dict], total: int, n_
         rules.append(f"- **{TITLES[rule]}** ({SOURCES[rule]}): agrees on {n[AGREE_SQUEAL] + n[AGREE_QUIET]} of "
                      f"{len(rows)} ({n[AGREE_SQUEAL]} squeal and penalised, {n[AGREE_QUIET]} quiet and not); "
                      f"**misses {n[MISSED]}** squealing curve conditions; **penalises {n[OVER]}** that do not squeal.")
+    if noted:
+        verdict += (f"Not computed ({len(noted)} rows, left out below): " + "; ".join(
+            f"{r['id']} (R = {r['radius_m']:g} m, {r['friction']}): {r['note'].split(': ', 1)[-1]}" for r in noted)
+            + ".\n\n")
     parts = [head, verdict, "The rules beside the physics (a rule sees the radius only, not the vehicle, speed or "
              "friction):\n\n" + "\n".join(rules) + "\n",
              "![level against radius](level_radius.png)\n", "![the line along its chainage](chainage.png)\n"]
@@ -121,10 +134,11 @@ def write_outputs(spec: dict, src: str, out: Path, quick: bool, line_rows, done)
     from ..atomic import save_figure, save_text
     from ..verdict.report import cell
 
-    rows = full_rows([r for r in done if r is not None])
+    every = full_rows([r for r in done if r is not None])
+    rows = [r for r in every if not r.get("note")]
     cols = OUT_COLUMNS + band_columns()
     save_csv(out / "line.csv", cols, ([cell(r[c]) if not isinstance(r[c], int) else r[c] for c in cols]
-                                      for r in rows))
+                                      for r in every))
     _, n_export = write_export(spec, out, rows)
     if rows:
         arr = {k: [r[k] for r in rows] for k in ("radius_m", "L_pA", "squeals", "friction", "chainage_m", "length_m",
@@ -136,6 +150,6 @@ def write_outputs(spec: dict, src: str, out: Path, quick: bool, line_rows, done)
         save_figure(chainage_figure(arr["chainage_m"], arr["length_m"], arr["radius_m"], arr["L_pA"], arr["squeals"],
                                     arr["friction"], {TITLES[k]: [r[f"{k}_dB"] for r in rows] for k in RULES},
                                     ids=arr["id"]), out / "chainage.png", dpi=100)
-    md = markdown(spec, src, quick, rows, len(line_rows), n_export)
+    md = markdown(spec, src, quick, every, len(line_rows), n_export)
     save_text(md, out / "line.md")
     save_text(md, out / "summary.md")
