@@ -62,7 +62,8 @@ def inputs_hash(spec: dict, curve_text: str, vehicle: str) -> str:
     wheel = tomllib.loads(v.read_text()).get("wheel", "")
     files = [v, paths.wheel_file(wheel), paths.rail_file(tomllib.loads(curve_text).get("rail", "bv50"))]
     return config_hash({"curve": curve_text, "files": [f.read_text() if f.exists() else "" for f in files],
-                        "code": code_hash(CODE, ignore_docs=True), "what_ifs": spec["what_ifs"]})
+                        "code": code_hash(CODE, ignore_docs=True), "what_ifs": spec["what_ifs"],
+                        "figures": spec["wheel_figures"]})
 
 
 def tasks_of(spec: dict, rows: list[LineRow], folder: Path) -> list[Task]:
@@ -92,7 +93,7 @@ def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool 
 
         dask = client.get()
         dask.run(prepare_worker)
-        r = run_tasks(tasks, line_case, table, dask, {"line": LineContext(str(folder), spec["what_ifs"])},
+        r = run_tasks(tasks, line_case, table, dask, {"line": LineContext(str(folder), spec["what_ifs"], spec["wheel_figures"])},
                       desc=spec["name"], progress=progress)
         stats |= {"run_wall_s": round(r.wall, 3), "dask_workers": r.workers}
     write_outputs(spec, src, out, quick, rows, [table.rows.get(t.key) for t in tasks])

@@ -20,9 +20,10 @@ NAN = float("nan")
 @dataclass(frozen=True)
 class LineContext:
     """What every row of a line runs with (scattered once to each worker): the folder of the line's
-    curve files and whether the mitigation what-ifs run."""
+    curve files, whether the mitigation what-ifs run and the squealing wheels' stages draw figures."""
     curves: str
     what_ifs: bool
+    figures: bool = False
 
 
 @dataclass(frozen=True)
@@ -112,7 +113,7 @@ def line_case(ctx: LineContext, t: LineTask) -> dict:
 
     os.environ["SQUEAL_CURVE_DIR"] = ctx.curves        # the line's curve files (single-threaded workers)
     try:
-        res = run_screen_first(t.curve, what_ifs=ctx.what_ifs)
+        res = run_screen_first(t.curve, what_ifs=ctx.what_ifs, figures=ctx.figures)
     except ConfigError as e:                           # no steady curving, or a wheel outside a case's range
         return dict(t.row) | summary_row(t.curve, []) | {"note": " ".join(str(e).split())}
     return dict(t.row) | summary_row(t.curve, res["rows"]) | {"note": ""}

@@ -25,6 +25,7 @@ rail's resolved cases and moving kernels come from ``pipeline.case`` (memoised) 
 """
 from __future__ import annotations
 
+import contextlib
 import logging
 import math
 import os
@@ -159,9 +160,35 @@ def quiet_row(p, root, label: str) -> dict:
     return row
 
 
-def run_screen_first(curve: str, *, what_ifs: bool = False, write: bool = True) -> dict:
+# the stages' figure functions a squealing wheel's verdict draws (module, attribute): ``without_figures``
+STAGE_FIGURES = (("contact_stage", "plot_rf"), ("greens_stage", "plot_kernels"), ("simulate_stage", "plot_forces"),
+                 ("radiate_stage", "plot_radiation"), ("listen_stage", "plot_listening"),
+                 ("postprocess.plots.passby", "passby_figure"), ("passby_stage", "save_figure"))
+
+
+@contextlib.contextmanager
+def without_figures(skip: bool = True):
+    """While it lasts (``skip``), the stages write their artifacts but draw no figure (about half of a
+    squealing wheel's stages' time): their figure functions replaced by no-ops, restored after."""
+    import importlib
+
+    saved = []
+    try:
+        if skip:
+            for mod, attr in STAGE_FIGURES:
+                m = importlib.import_module(mod if "." in mod else f"..{mod}", __package__)
+                saved.append((m, attr, getattr(m, attr)))
+                setattr(m, attr, lambda *a, **k: None)
+        yield
+    finally:
+        for m, attr, f in saved:
+            setattr(m, attr, f)
+
+
+def run_screen_first(curve: str, *, what_ifs: bool = False, write: bool = True, figures: bool = True) -> dict:
     """The verdict of ``curve`` screen first (module notes): {'rows': one per wheel (``stage.COLUMNS``,
-    plus ``time_loop``: whether it ran), 'info': CurveInfo}; ``write``: build/curves/<curve>/verdict.csv."""
+    plus ``time_loop``: whether it ran), 'info': CurveInfo}; ``write``: build/curves/<curve>/verdict.csv;
+    ``figures``: the stages of a squealing wheel draw their figures (``without_figures`` otherwise)."""
     from solvers.study import squeals
 
     from .cases import wheel_case, write_case
@@ -188,7 +215,8 @@ def run_screen_first(curve: str, *, what_ifs: bool = False, write: bool = True) 
         if not squeals(L_F2):                 # the time loop overrules the screen: quiet, no stage to run
             rows.append(quiet_row(p, root, label) | {"L_F2": L_F2, "time_loop": True})
             continue
-        rows.append(wheel_verdict(info, p, what_ifs=what_ifs) | {"time_loop": True})
+        with without_figures(not figures):
+            rows.append(wheel_verdict(info, p, what_ifs=what_ifs) | {"time_loop": True})
         _tick("stages of squealing wheels", t0)
     if write:
         artifacts.save_csv(paths.curve_dir(curve) / "verdict.csv", COLUMNS,

@@ -74,6 +74,7 @@ def chainage_figure(chainage, length, radius, level, squeals, cond, penalties: d
         seen[(x, r)] = True
         a.bar(x, r, width=max(w, 1e-3), align="edge", color="0.55")
     a.set_yscale("log")
+    a.set_ylim(0.5 * R.min() if R.size else 10.0, 1.6 * R.max() if R.size else 1000.0)
     a.set_ylabel("radius (m)")
     if ids is not None:
         for x, w, r, i in zip(x0, Lc, R, ids):
@@ -89,8 +90,9 @@ def chainage_figure(chainage, length, radius, level, squeals, cond, penalties: d
         sq = S[k]
         b.plot(xs[sq], L[k][sq], m, color=col, ms=6, label=f"{cn}: squeals")
         b.plot(xs[~sq], np.zeros((~sq).sum()), m, mfc="none", color=col, ms=5, label=f"{cn}: quiet")
-    b.set_ylabel("L_pA at 7.5 m (dB(A))")
-    b.set_ylim(bottom=-3)
+    b.set_ylabel("L_pA at 7.5 m (dB(A))\n(0: quiet)")
+    top = np.nanmax(L[S]) if S.any() else 0.0
+    b.set_ylim(-3, max(100.0, top + 8))
     b.legend(fontsize=7, ncol=len(conds) * 2, loc="lower right")
     for j, (title, p) in enumerate(penalties.items()):
         xs, ys = _stairs(x0, Lc, np.asarray(p, float))
