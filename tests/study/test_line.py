@@ -73,10 +73,10 @@ def _table(path):
 
 def test_three_curve_line(tmp_path):
     """R = 75 m dry (mu = 0.35) squeals at its inner leading wheel as `make curve CURVE=r75` does ((2,0,a),
-    435 Hz, L_pA 78.3 dB(A)); the same curve wet (mu = 0.15) and R = 600 m dry are quiet; the rules: both
-    penalise R = 75 m, neither R = 600 m."""
+    435 Hz, L_pA 78.3 dB(A)); R = 150 m wet (mu = 0.15) and R = 600 m dry are quiet; the rules: both
+    penalise R = 75 m and 150 m, neither R = 600 m."""
     name = "t_line3"
-    env = _write(tmp_path, name, "A,100,75,100,50,31,c20_metro,dry\nA,100,75,100,50,31,c20_metro,wet\n"
+    env = _write(tmp_path, name, "A,100,75,100,50,31,c20_metro,dry\nW,300,150,102,70,44.1,c20_metro,wet\n"
                                  "B,600,600,64,180,70,c20_metro,dry\n")
     out = tmp_path / "out"
     r = _cli(env, "study", "--study", name, "--workers", "1", "--no-progress", "--out", str(out))
@@ -92,10 +92,10 @@ def test_three_curve_line(tmp_path):
     assert float(a["L_pA"]) == pytest.approx(78.3374, abs=1e-4)
     assert "a1i" in a["unstable_wheels"] and "a1i" in a["time_loop_wheels"]
     assert a["cnossos_dB"] == "8" and a["schall03_dB"] == "8" and a["cnossos_vs_physics"].startswith("agree")
-    for k in (("A", "wet"), ("B", "dry")):
-        assert rows[k]["squeals"] == "0"
+    for k in (("W", "wet"), ("B", "dry")):
+        assert rows[k]["squeals"] == "0" and rows[k]["note"] == ""
     assert rows[("B", "dry")]["cnossos_vs_physics"] == "agree: quiet"
-    assert rows[("A", "wet")]["schall03_vs_physics"] == "penalised, quiet"
+    assert rows[("W", "wet")]["schall03_vs_physics"] == "penalised, quiet"
     # the verdict of the squealing row is the curve stage's (its verdict.csv, screen first)
     from pipeline.verdict.stage import read_verdict
 
