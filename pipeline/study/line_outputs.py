@@ -143,9 +143,9 @@ def write_outputs(spec: dict, src: str, out: Path, quick: bool, line_rows, done)
     if rows:
         arr = {k: [r[k] for r in rows] for k in ("radius_m", "L_pA", "squeals", "friction", "chainage_m", "length_m",
                                                  "id")}
-        classes = {TITLES["cnossos"]: (300.0, 500.0, "+8 dB R <= 300 m, +5 dB to 500 m"),
-                   TITLES["schall03"]: (300.0, 500.0, "+8 dB R < 300 m, +3 dB to < 500 m")}
-        save_figure(level_radius_figure(arr["radius_m"], arr["L_pA"], arr["squeals"], arr["friction"], classes),
+        bands = [(1.0, 300.0, "R <= 300 m: CNOSSOS-EU +8 dB, Schall 03 +8 dB (R < 300 m)"),
+                 (300.0, 500.0, "300-500 m: CNOSSOS-EU +5 dB (to 500), Schall 03 +3 dB (300 to < 500)")]
+        save_figure(level_radius_figure(arr["radius_m"], arr["L_pA"], arr["squeals"], arr["friction"], bands),
                     out / "level_radius.png", dpi=100)
         save_figure(chainage_figure(arr["chainage_m"], arr["length_m"], arr["radius_m"], arr["L_pA"], arr["squeals"],
                                     arr["friction"], {TITLES[k]: [r[f"{k}_dB"] for r in rows] for k in RULES},

@@ -27,20 +27,17 @@ def _conditions(cond) -> list[str]:
     return sorted(set(cond), key=lambda c: (order.get(c, 2), c))
 
 
-def level_radius_figure(radius, level, squeals, cond, rules: dict, level_name: str = "L_pA at 7.5 m (dB(A))"):
-    """Level against radius: filled markers squeal (the loudest wheel's level), open markers at the
-    bottom are quiet curves; one marker and colour per friction condition; ``rules`` {title: (R1, R2)}:
-    the radius classes of each rule shaded (its penalties in the legend)."""
+def level_radius_figure(radius, level, squeals, cond, bands, level_name: str = "L_pA at 7.5 m (dB(A))"):
+    """Level against radius: filled markers squeal (the loudest wheel's level), open markers on the bottom
+    line are quiet curves; one marker and colour per friction condition; ``bands`` [(R_lo, R_hi, text)]:
+    the rules' radius classes shaded (darker first), their penalties in the legend."""
     plt = _plt()
     R, L, S, C = (np.asarray(radius, float), np.asarray(level, float), np.asarray(squeals, bool),
                   np.asarray(cond, str))
-    fig, ax = plt.subplots(figsize=(8, 4.2))
-    floor = np.nanmin(L[S]) - 10 if S.any() else 40.0
-    for (title, (r1, r2, text)), shade in zip(rules.items(), ("0.85", "0.93")):
-        ax.axvspan(R.min() * 0.9 if R.size else 1, r2, color=shade, zorder=0, lw=0)
-        ax.axvline(r1, color="0.5", lw=0.8, ls="--")
-        ax.axvline(r2, color="0.5", lw=0.8, ls=":")
-        ax.plot([], [], color=shade, lw=8, label=f"{title}: {text}")
+    fig, ax = plt.subplots(figsize=(11.5, 4.4))
+    floor = np.nanmin(L[S]) - 8 if S.any() else 60.0
+    for (lo, hi, text), shade in zip(bands, ("0.82", "0.92", "0.96")):
+        ax.axvspan(lo, hi, color=shade, zorder=0, lw=0, label=text)
     for i, c in enumerate(_conditions(C)):
         m, col = MARKERS[i % len(MARKERS)], COLOURS[i % len(COLOURS)]
         k = (C == c) & S
@@ -48,10 +45,12 @@ def level_radius_figure(radius, level, squeals, cond, rules: dict, level_name: s
         q = (C == c) & ~S
         ax.plot(R[q], np.full(q.sum(), floor), m, mfc="none", color=col, ms=7, label=f"{c}: quiet ({int(q.sum())})")
     ax.set_xscale("log")
+    ax.set_xlim(0.85 * R.min() if R.size else 10, 1.15 * R.max() if R.size else 1000)
+    ax.set_ylim(floor - 3, (np.nanmax(L[S]) if S.any() else floor) + 4)
     ax.set_xlabel("curve radius R (m)")
     ax.set_ylabel(level_name)
-    ax.set_title("the physics' verdict per curve (open markers at the bottom: no squeal)", fontsize=9)
-    ax.legend(fontsize=7, loc="upper right", ncol=2)
+    ax.set_title("the physics' verdict per curve (open markers on the bottom line: no squeal)", fontsize=9)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     ax.grid(True, which="both", alpha=0.3)
     fig.tight_layout()
     return fig
