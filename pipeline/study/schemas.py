@@ -119,9 +119,10 @@ LINE = {
     },
     "what_ifs": Field(bool, default=False, doc="the curve verdict's mitigation what-ifs for every squealing wheel "
                                                "(friction threshold, modal damping; slower)"),
-    "wheel_figures": Field(bool, default=False, doc="the stages' figures of each squealing wheel (contact_rf.png, "
-                                                    "greens.png, simulate.png, radiate.png, listen and pass-by "
-                                                    "PNGs; their npz, CSV and WAV files are written either way)"),
+    "wheel_figures": Field(bool, default=False, doc="the stages' figures and the pass-by of each squealing wheel "
+                                                    "(contact_rf.png, greens.png, simulate.png, radiate.png, the "
+                                                    "listen PNG, passby_*; its npz, CSV, exports and listen WAV are "
+                                                    "written either way)"),
     "quick": {
         "rows": Field(int, min=1, max=100000, default=3, doc="--quick: the CSV's first rows only"),
     },

@@ -163,13 +163,14 @@ def quiet_row(p, root, label: str) -> dict:
 # the stages' figure functions a squealing wheel's verdict draws (module, attribute): ``without_figures``
 STAGE_FIGURES = (("contact_stage", "plot_rf"), ("greens_stage", "plot_kernels"), ("simulate_stage", "plot_forces"),
                  ("radiate_stage", "plot_radiation"), ("listen_stage", "plot_listening"),
-                 ("postprocess.plots.passby", "passby_figure"), ("passby_stage", "save_figure"))
+                 ("passby_stage", "run_passby"))
 
 
 @contextlib.contextmanager
 def without_figures(skip: bool = True):
-    """While it lasts (``skip``), the stages write their artifacts but draw no figure (about half of a
-    squealing wheel's stages' time): their figure functions replaced by no-ops, restored after."""
+    """While it lasts (``skip``), the stages write their artifacts but draw no figure and the listen stage
+    makes no pass-by (together about two thirds of a squealing wheel's stages' time; `python -m pipeline
+    listen --case <curve>/<wheel>` makes them): those functions replaced by no-ops, restored after."""
     import importlib
 
     saved = []
