@@ -4,7 +4,8 @@
 runs the time loop for every wheel with lateral creepage.  Here, per wheel of the leading bogie:
 
 1. the stability screen from arrays built in memory (``screen_context``): the contact stage's
-   arrays (``contact_stage.build_contact``: the same NORM table, compliance and friction curve), the
+   arrays (``contact_stage.build_contact``: the same NORM table, compliance and friction curve; not its
+   measured interpolation error, which no solver reads), the
    wheel's modal data at the contact point (the greens stage's ``contact_shape`` and damping rule; the
    wheel kernel, which neither the screen nor the time loop uses, is not built) and the moving rail
    kernel from the rail's shared cache (``greens_stage.rail_greens``, built there when new).  No
@@ -89,7 +90,7 @@ def screen_context(case: str):
     if c["contact"].get("points", 1) != 1 or c["contact"].get("angle", "none") != "none":
         raise ValueError(f"{case}: the screen-first verdict takes one contact point in the track's frame "
                          "(a curve wheel's case: [contact] points = 1, angle = 'none')")
-    con = build_contact(c, pw, geo)
+    con = build_contact(c, pw, geo, diagnostics=False)   # the NORM table's error check: the stage's job
     t0 = _tick("contact", t0)
     modes = wheel_modes(c["wheel"], pw)
     dt, v = c["time"]["dt"], c["kinematics"]["speed"]
