@@ -97,9 +97,13 @@ def markdown(spec: dict, src: str, quick: bool, every: list[dict], total: int, n
                      f"{len(rows)} ({n[AGREE_SQUEAL]} squeal and penalised, {n[AGREE_QUIET]} quiet and not); "
                      f"**misses {n[MISSED]}** squealing curve conditions; **penalises {n[OVER]}** that do not squeal.")
     if noted:
-        verdict += (f"Not computed ({len(noted)} rows, left out below): " + "; ".join(
-            f"{r['id']} (R = {r['radius_m']:g} m, {r['friction']}): {r['note'].split(': ', 1)[-1]}" for r in noted)
-            + ".\n\n")
+        why = {}
+        for r in noted:
+            reason = r["note"].split(": ", 1)[-1]
+            reason = reason.split(" (")[0] if "did not converge" in reason else reason
+            why.setdefault(reason, []).append(f"{r['id']} ({r['radius_m']:g} m, {r['friction']})")
+        verdict += (f"Not computed ({len(noted)} rows, left out below; the whole message in line.csv's `note`): "
+                    + "; ".join(f"{', '.join(v)}: {k}" for k, v in why.items()) + ".\n\n")
     parts = [head, verdict, "The rules beside the physics (a rule sees the radius only, not the vehicle, speed or "
              "friction):\n\n" + "\n".join(rules) + "\n",
              "![level against radius](level_radius.png)\n", "![the line along its chainage](chainage.png)\n"]
