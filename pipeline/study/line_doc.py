@@ -55,6 +55,8 @@ def fragment(line: str, rows: list[dict], md: str, checks: list[dict]) -> str:
     overruled = [c for c in checks if c["unstable"] and not c["squeals"]]
     lgy = [c for c in checks if c["gamma_y"] != 0.0]
     radii = sorted({c["R"] for c in checks})
+    line_unstable = sum(len(r["time_loop_wheels"].split()) for r in rows)
+    line_squeal = sum(len(r["squealing_wheels"].split()) for r in rows)
     paras = [p.strip() for p in md.split("\n\n") if p.strip()]
     verdict = "\n\n".join(p for p in paras[1:3] if not p.startswith("The rules beside"))
     rules = md[md.index("The rules beside"):md.index("![level")] if "The rules beside" in md else ""
@@ -88,12 +90,13 @@ Coulomb friction, the leading bogie only, no field data of this line.
 
 **Screen first against the curve stage.**  The line runs the time loop only for the wheels the stability
 screen finds unstable.  Over the radius study's curves (R = {', '.join(f'{r:g}' for r in radii)} m, the metro at
-its design speeds, mu = 0.35; `make curve`'s verdict for every wheel, the time loop run for all), the screen
-calls **{len(missed)} of {len(lgy)} wheels with lateral creepage stable that the time loop makes squeal**
-({dis}): the screen-first path would call those quiet.  The screen finds {len(overruled)} wheels unstable whose
-time loop decays ({over}); the screen-first path runs their time loop and reports them quiet, as `make curve`
-does.  The screen-first verdict of a squealing wheel is `make curve`'s own (the same stages), and its screen
-numbers are `make curve`'s bit for bit (tests/verdict/test_screen_first.py).
+its design speeds, mu = 0.35; `make curve`'s verdict for every wheel, the time loop run for all), **{len(missed)}
+of the {len(lgy)} wheels with lateral creepage squeal in the time loop while the screen calls them stable**
+({dis}): those the screen-first path would call quiet.  {len(overruled)} wheels are unstable in the screen while
+their time loop decays ({over}); the screen-first path runs their time loop and reports them quiet, as `make
+curve` does.  On the example line itself, {line_unstable} wheels were unstable in the screen and run in the
+time loop, {line_squeal} of them squeal.  The screen-first verdict of a squealing wheel is `make curve`'s own (the
+same stages), and its screen numbers are `make curve`'s bit for bit (tests/verdict/test_screen_first.py).
 
 Written by `.venv/bin/python -m pipeline.study.line_doc` from build/studies/{line}/ (the test
 `tests/study/test_line_validation.py`, `make validate`).
