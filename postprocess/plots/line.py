@@ -46,6 +46,9 @@ def level_radius_figure(radius, level, squeals, cond, bands, level_name: str = "
         ax.plot(R[q], np.full(q.sum(), floor), m, mfc="none", color=col, ms=7, label=f"{c}: quiet ({int(q.sum())})")
     ax.set_xscale("log")
     ax.set_xlim(0.85 * R.min() if R.size else 10, 1.15 * R.max() if R.size else 1000)
+    ticks = [t for t in (20, 30, 50, 75, 100, 150, 200, 300, 500, 750, 1000, 2000) if ax.get_xlim()[0] <= t <= ax.get_xlim()[1]]
+    ax.set_xticks(ticks, [f"{t:g}" for t in ticks])
+    ax.minorticks_off()
     ax.set_ylim(floor - 3, (np.nanmax(L[S]) if S.any() else floor) + 4)
     ax.set_xlabel("curve radius R (m)")
     ax.set_ylabel(level_name)
