@@ -129,8 +129,8 @@ $(STAMP): requirements.txt $(RENDER)
 
 setup: $(STAMP) ## install Debian packages and the Python venv (stamp files; reruns only when the lists change)
 
-check: | $(STAMP) ## validate the CASE file and its wheel and rail (or WHEEL=, RAIL=) only
-	$(PY) -m pipeline check --wheel $(WHEEL) --rail $(RAIL) --case $(CASE)
+check: | $(STAMP) ## validate the CASE file and its wheel and rail (or WHEEL=, RAIL=) only; STUDY=<name>: the study file (a line study: its CSV of curves)
+	$(if $(filter command line,$(origin STUDY)),$(PY) -m pipeline.study.check $(STUDY),$(PY) -m pipeline check --wheel $(WHEEL) --rail $(RAIL) --case $(CASE))
 
 # --- wheel stages
 $(W)/mesh.json: $(WFILE) $(DEPS_mesh) | $(CORE)
@@ -202,7 +202,7 @@ listen: $(C)/listen.npz ## what a listener hears: L_p, L_pA, 1/3 octaves, a cali
 report: $(BUILD)/report/$(CASE)/report.md ## one Markdown report of CASE (its wheel and rail come from the case file)
 
 # --- studies (SPEC 7): the cases' artifacts first, then the study on Dask (resumes when interrupted)
-study: | $(STAMP) ## parameter study STUDY=map|damping|contact on Dask -> build/studies/STUDY/; QUICK=1, WORKERS=N, SCHEDULER=tcp://host:port
+study: | $(STAMP) ## parameter study STUDY=map|damping|contact|<line> on Dask -> build/studies/STUDY/; QUICK=1, WORKERS=N, SCHEDULER=tcp://host:port
 	@for c in $(STUDY_CASES); do $(MAKE) --no-print-directory contact greens CASE=$$c || exit 1; done
 	$(PY) -m pipeline study --study $(STUDY) $(if $(QUICK),--quick) $(if $(WORKERS),--workers $(WORKERS)) $(if $(SCHEDULER),--scheduler $(SCHEDULER))
 

@@ -129,15 +129,22 @@ def rail_decay_time(rail: str) -> tuple[float, float] | None:
     best = None
     for f in sorted((paths.rail_dir(rail) / "moving").glob("*.npz")):
         try:
-            with np.load(f) as d:
-                cfg = json.loads(str(d["__provenance__"])).get("config", {})
-                g0, dt0 = np.asarray(d["rail_fixed_kernel"]), float(cfg["dt"])
+            st = f.stat()
+            key = (str(f), st.st_mtime_ns, st.st_size)
+            if key not in _DECAY:                   # each kernel file measured once per process (a line
+                with np.load(f) as d:               # study's worker resolves hundreds of cases)
+                    cfg = json.loads(str(d["__provenance__"])).get("config", {})
+                    g0, dt0 = np.asarray(d["rail_fixed_kernel"]), float(cfg["dt"])
+                _DECAY[key] = (decay_time(g0, dt0), dt0)
+            T, dt0 = _DECAY[key]
         except (OSError, KeyError, ValueError, TypeError):
             continue
-        T = decay_time(g0, dt0)
         if T is not None and (best is None or T > best[0]):
             best = (T, dt0)
     return best
+
+
+_DECAY: dict = {}   # rail_decay_time's measure of each moving-kernel file (path, mtime, size)
 
 
 def time_step_problem(c: dict, rail: str) -> str | None:

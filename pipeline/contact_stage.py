@@ -102,11 +102,14 @@ def static_contact(geo, E: float, nu: float, F_L: float, dx: float):
                        f"it is {MAX_TRIES} times enlarged); the profiles are too conformal here for this contact model")
 
 
-def build_contact(c: dict, pw: dict, geo, n_table: int = 41, frictions=None, curve=None) -> dict:
+def build_contact(c: dict, pw: dict, geo, n_table: int = 41, frictions=None, curve=None,
+                  diagnostics: bool = True) -> dict:
     """The contact arrays of one case; ``geo`` is the case's ContactGeometry (profiles and rigid
     contact point).  Friction curves for ``frictions`` (Friction or float mu each; default: the
     case's friction), each by ``curve`` (``pipeline.friction.compute_curve`` without I/O, the
-    default, or a ``CurveCache``)."""
+    default, or a ``CurveCache``).  ``diagnostics``: the NORM table's measured interpolation error
+    (``table_error_*``, a NORM solve per interval: about a third of the stage; no solver reads it;
+    empty arrays without)."""
     from solvers.contact.compliance import compliance_table
     from solvers.contact.norm import norm_table, table_midpoint_error
 
@@ -122,7 +125,8 @@ def build_contact(c: dict, pw: dict, geo, n_table: int = 41, frictions=None, cur
     x, y, gap, A, B, xi_static, static = static_contact(geo, E, nu, F_L, dx)
     xi_nodes = np.linspace(0.0, 2.0 * xi_static, n_table)
     table = norm_table(gap, xi_nodes, dx, DY, E, nu)
-    err = table_midpoint_error(table, gap, dx, DY, E, nu)
+    err = (table_midpoint_error(table, gap, dx, DY, E, nu) if diagnostics
+           else {k: np.zeros(0) for k in ("xi3", "force", "pressure")})
     A1_nodes, A2_nodes = compliance_table(xi_nodes, table.p, dx, DY, E, nu)
     frictions = [case_friction(c)] if frictions is None else [as_friction(f) for f in frictions]
     curves = [(curve or compute_curve)(static.p, dx, DY, v, f, E, nu) for f in frictions]

@@ -31,6 +31,8 @@ INPUT_PAGES = (
     ("Rail", "geometry/rails/<name>.toml", "pipeline.schemas", "RAIL"),
     ("Case", "pipeline/cases/<name>.toml", "pipeline.schemas", "CASE"),
     ("Study (`kind` picks the schema)", "pipeline/studies/<name>.toml", "pipeline.study.schemas", "SCHEMAS"),
+    ("A line study's curves (CSV columns, one row per curve, vehicle and friction condition)",
+     "pipeline/studies/<curves>.csv", "pipeline.study.line_input", "ROW_SCHEMA"),
     ("Vehicle", "geometry/vehicles/<name>.toml", "pipeline.curve_schemas", "VEHICLE"),
     ("Curve", "pipeline/curves/<name>.toml", "pipeline.curve_schemas", "CURVE"),
 )

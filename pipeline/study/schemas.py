@@ -7,7 +7,7 @@ from solvers.constants import F_MAX_HZ, SQUEAL_LEVEL_DB
 
 from ..config import Field, ListOf
 
-KINDS = ("map", "damping", "contact")
+KINDS = ("map", "damping", "contact", "line")
 
 COMMON = {
     "name": Field(str, doc="short name; outputs in build/studies/<name>/"),
@@ -102,4 +102,36 @@ CONTACT = COMMON | {
     },
 }
 
-SCHEMAS = {"map": MAP, "damping": DAMPING, "contact": CONTACT}
+LINE = {
+    "name": COMMON["name"],
+    "kind": COMMON["kind"],
+    "description": COMMON["description"],
+    "curves": Field(str, doc="the line's curves: a CSV file beside the study file (pipeline/studies/<curves>), one row "
+                             "per curve, vehicle and friction condition, columns id, chainage_m, radius_m, cant_mm, "
+                             "length_m, speed_kmh, vehicle, friction (pipeline/study/line_input.py)"),
+    "base_curve": Field(str, default="r150", doc="pipeline/curves/<base_curve>.toml: the rail, gauge, gauge widening "
+                                                 "and traction of every curve of the line"),
+    "friction": {
+        "dry_mu": Field(float, min=0.05, max=1.0, default=0.4,
+                        doc="Coulomb coefficient of the CSV's friction condition 'dry'"),
+        "wet_mu": Field(float, min=0.05, max=1.0, default=0.15,
+                        doc="Coulomb coefficient of the CSV's friction condition 'wet'"),
+    },
+    "what_ifs": Field(bool, default=False, doc="the curve verdict's mitigation what-ifs for every squealing wheel "
+                                               "(friction threshold, modal damping; slower)"),
+    "wheel_figures": Field(bool, default=False, doc="the stages' figures and the pass-by of each squealing wheel "
+                                                    "(contact_rf.png, greens.png, simulate.png, radiate.png, the "
+                                                    "listen PNG, passby_*; its npz, CSV, exports and listen WAV are "
+                                                    "written either way)"),
+    "quick": {
+        "rows": Field(int, min=1, max=100000, default=3, doc="--quick: the CSV's first rows only"),
+    },
+    "export": {
+        "passages_day": Field(float, unit="1/h", min=0.0, max=1000.0, default=1.0,
+                              doc="squealing passages per hour in the LW_RAILWAY export's day period (D)"),
+        "passages_evening": Field(float, unit="1/h", min=0.0, max=1000.0, default=1.0, doc="evening period (E)"),
+        "passages_night": Field(float, unit="1/h", min=0.0, max=1000.0, default=1.0, doc="night period (N)"),
+    },
+}
+
+SCHEMAS = {"map": MAP, "damping": DAMPING, "contact": CONTACT, "line": LINE}

@@ -3,7 +3,8 @@
 
 A study is defined by pipeline/studies/<NAME>.toml (schemas in pipeline/study/schemas.py):
 ``kind = "map"`` (creepage/friction map, pipeline/study/map.py), ``"damping"`` (wheel modal
-damping study, damping.py) or ``"contact"`` (contact-model validation, contact.py).  The cases
+damping study, damping.py), ``"contact"`` (contact-model validation, contact.py) or ``"line"`` (a line of
+curves, each curve's verdict screen first and the noise-mapping rules beside it, line.py).  The cases
 run on Dask (pipeline/study/runner.py),
 their rows are appended to the study's table as they finish; rerunning the command resumes an
 interrupted study and only renders the outputs of a finished one.
@@ -34,9 +35,9 @@ log = logging.getLogger("pipeline.study")
 
 def _kind_module(kind: str):
     """The module that runs a study of this kind: ``run(spec, src, out, ...)``."""
-    from . import contact, damping, map
+    from . import contact, damping, line, map
 
-    return {"map": map, "damping": damping, "contact": contact}[kind]
+    return {"map": map, "damping": damping, "contact": contact, "line": line}[kind]
 
 
 def load_study(name: str) -> tuple[dict, str]:
@@ -52,7 +53,7 @@ def load_study(name: str) -> tuple[dict, str]:
     spec = load(path, schema)                        # an unknown kind fails here, naming the key
     if spec["kind"] not in KINDS:                    # pragma: no cover - the schema's choices catch it
         raise ConfigError(str(path), [("kind", spec["kind"], f"one of {list(KINDS)}")])
-    for case in spec["cases"]:
+    for case in spec.get("cases", []):              # a line study names curves instead (pipeline/study/line.py)
         if not paths.case_file(case).exists():
             raise ConfigError(str(path), [("cases", case, f"a case in {paths.cases()}: "
                                                           f"{paths.available(paths.cases())}")])

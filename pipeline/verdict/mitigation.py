@@ -43,18 +43,28 @@ class CaseModels:
     """One case's linearised and time-domain models at any friction coefficient and wheel damping."""
 
     def __init__(self, case: str):
-        from solvers.timeloop.inputs import curve_labels
-
+        from ..case import resolve_case
+        from ..friction import case_friction
         from ..study.context import load_context
 
-        from ..case import resolve_case
-
-        from ..friction import case_friction
-
-        self.ctx = load_context(case, radiation=False)
         c = resolve_case(case).case
-        self.spin = float(c["kinematics"].get("spin", 0.0))   # 1/m
-        self.friction = case_friction(c, case)                # the case's own law (its curve is in contact.npz)
+        self._setup(load_context(case, radiation=False), float(c["kinematics"].get("spin", 0.0)),
+                    case_friction(c, case))
+
+    @classmethod
+    def of_context(cls, ctx, spin: float, friction) -> "CaseModels":
+        """The models of a CaseContext built in memory (``pipeline.verdict.screen_first``: no artifacts);
+        ``spin`` (1/m) and ``friction`` (``pipeline.friction.Friction``) as the case's."""
+        self = cls.__new__(cls)
+        self._setup(ctx, float(spin), friction)
+        return self
+
+    def _setup(self, ctx, spin: float, friction) -> None:
+        from solvers.timeloop.inputs import curve_labels
+
+        self.ctx = ctx
+        self.spin = spin                                      # 1/m
+        self.friction = friction                              # the case's own law (its curve is in contact.npz)
         # the Coulomb curves the contact artifact holds (labels 'coulomb(mu=0.35)'), by coefficient
         self.mus = np.array([float(lab.split("=")[1].rstrip(")")) for lab in curve_labels(self.ctx.contact)
                              if lab.startswith("coulomb(mu=")], float)

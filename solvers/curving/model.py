@@ -122,8 +122,27 @@ class ContactResult:
                 -(-self.F2 * math.sin(d) + self.N * math.cos(d)))
 
 
+_CONTACTS: dict = {}
+_CONTACTS_MAX = 20000
+
+
 def wheel_contacts(prof: Profiles, veh: Vehicle, trk: Track, law: CreepLaw, side: int, y: float, psi: float,
                    eps: float, loads: dict) -> list[ContactResult]:
+    """``_wheel_contacts`` memoised per (profiles, vehicle, track, law: by identity, held while cached) and
+    its numbers: a Jacobian column of another unknown (the other wheelset's, the frame's) leaves a wheel's
+    contacts as they were.  The same results (a pure function of its arguments); a fresh list each call."""
+    key = (id(prof), id(veh), id(trk), id(law), side, float(y), float(psi), float(eps),
+           tuple((k, float(v)) for k, v in loads.items()))
+    hit = _CONTACTS.get(key)
+    if hit is None or hit[0] is not prof or hit[1] is not veh or hit[2] is not trk or hit[3] is not law:
+        if len(_CONTACTS) >= _CONTACTS_MAX:
+            _CONTACTS.clear()
+        hit = _CONTACTS[key] = (prof, veh, trk, law, _wheel_contacts(prof, veh, trk, law, side, y, psi, eps, loads))
+    return list(hit[4])
+
+
+def _wheel_contacts(prof: Profiles, veh: Vehicle, trk: Track, law: CreepLaw, side: int, y: float, psi: float,
+                    eps: float, loads: dict) -> list[ContactResult]:
     """The contacts of one wheel (side +1 outer, -1 inner) of a wheelset at shift y, yaw psi,
     spin eps; loads: {'tread': N, 'flange': N or absent}."""
     out = []

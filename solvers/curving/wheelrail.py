@@ -100,7 +100,27 @@ def _minima(sep):
     return np.flatnonzero((sep[1:-1] <= sep[:-2]) & (sep[1:-1] < sep[2:])) + 1
 
 
+_ZONE: dict = {}
+_ZONE_MAX = 50000
+
+
 def zone_point(wheel, rail_t, shift: float, zone: str, edge: float) -> ContactPoint | None:
+    """``_zone_point`` memoised per profiles (by identity, held while cached), shift, zone and edge: the
+    equilibrium's iterations ask again and again for the contact at an unchanged shift (the Jacobian
+    columns of the other unknowns: yaw, spin, loads, the other wheelset, the frame), ~4 in 5 calls of
+    a bogie's solve.  The same numbers (a pure function of its arguments)."""
+    key = (id(wheel), id(rail_t), float(shift), zone, float(edge))
+    hit = _ZONE.get(key)
+    if hit is not None and hit[0] is wheel and hit[1] is rail_t:
+        return hit[2]
+    p = _zone_point(wheel, rail_t, shift, zone, edge)
+    if len(_ZONE) >= _ZONE_MAX:
+        _ZONE.clear()
+    _ZONE[key] = (wheel, rail_t, p)
+    return p
+
+
+def _zone_point(wheel, rail_t, shift: float, zone: str, edge: float) -> ContactPoint | None:
     """The contact point of the tread or of the flange at this shift.
 
     On the profile grid (the rail interpolated linearly between its points, ``rail_t.y``): the

@@ -1,0 +1,100 @@
+"""The line study (``kind = "line"``, issue 27): every curve of a line, for its vehicle and friction
+condition, through the curve verdict screen first (``pipeline.verdict.screen_first``: the stability
+screen for every wheel of the leading bogie, the time loop, radiation and listening only where the
+screen finds a growing pole), on Dask (``runner``: a local cluster or ``--scheduler ADDR``), one row
+per curve appended to ``table.csv`` as it finishes (resumable), and the comparison with the
+CNOSSOS-EU and Schall 03 squeal penalties (``line_rules``).
+
+Outputs in build/studies/<line>/: ``table.csv`` (as run), ``line.csv`` (the CSV's order, with the rules'
+penalties), ``level_radius.png``, ``chainage.png``, ``lw_railway.csv`` (NoiseModelling's LW_RAILWAY
+rows of the squealing curves) with ``lw_railway_sections.csv``, ``line.md`` (the verdict first) and
+``summary.md`` (the same, for the report), ``curves/`` (a curve file per row); each curve's wheel
+cases and verdict.csv in build/curves/<curve>/.
+"""
+from __future__ import annotations
+
+import logging
+from pathlib import Path
+
+from .. import paths
+from ..config import config_hash
+from .line_input import LineRow, read_rows, write_curves
+from .line_worker import LineContext, LineTask, band_columns
+from .results_table import ResultsTable
+from .runner import Task, pending, run_tasks
+
+log = logging.getLogger("pipeline.study")
+
+# the code a row depends on (its syntax trees): the curving, the verdict and every stage it runs
+CODE = ["pipeline/curving.py", "pipeline/curve_schemas.py", "solvers/curving/*.py", "pipeline/verdict/*.py",
+        "pipeline/study/line_worker.py", "pipeline/contact_stage.py", "pipeline/greens_stage.py",
+        "pipeline/simulate_stage.py", "pipeline/radiate_stage.py", "pipeline/listen_stage.py",
+        "pipeline/rail_surface.py", "pipeline/rail_kernel.py", "pipeline/friction.py", "pipeline/case.py",
+        "pipeline/profiles.py", "solvers/stability.py", "solvers/mitigation.py", "solvers/interaction.py",
+        "solvers/timeloop/*.py", "solvers/contact/*.py", "solvers/receptance.py", "solvers/moving_kernel.py",
+        "postprocess/radiation.py", "postprocess/listener.py", "postprocess/exports.py", "solvers/constants.py"]
+
+ROW_COLUMNS = {"id": str, "chainage_m": float, "radius_m": float, "cant_mm": float, "length_m": float,
+               "speed_kmh": float, "vehicle": str, "friction": str, "mu": float}
+RESULT_COLUMNS = {"curve": str, "squeals": int, "wheel": str, "f_squeal": float, "mode": str, "L_pA": float,
+                  "L_W": float, "L_F2": float, "squealing_wheels": str, "unstable_wheels": str,
+                  "time_loop_wheels": str, "aoa_mrad": float, "note": str}
+
+
+def columns() -> dict:
+    """The results table's columns: the row's inputs, the verdict, the bands, the bookkeeping."""
+    return ROW_COLUMNS | RESULT_COLUMNS | {b: float for b in band_columns()} | {"wall_s": float, "worker": str}
+
+
+def selected(spec: dict, quick: bool) -> list[LineRow]:
+    rows = read_rows(spec)                           # every problem of the CSV, before any work
+    return rows[: spec["quick"]["rows"]] if quick else rows
+
+
+def inputs_hash(spec: dict, curve_text: str, vehicle: str) -> str:
+    """What a row's result depends on: its curve file, the vehicle, wheel and rail files, the code."""
+    from ..code_hash import code_hash
+    from ..curving import vehicle_file
+
+    v = vehicle_file(vehicle)
+    import tomllib
+
+    wheel = tomllib.loads(v.read_text()).get("wheel", "")
+    files = [v, paths.wheel_file(wheel), paths.rail_file(tomllib.loads(curve_text).get("rail", "bv50"))]
+    return config_hash({"curve": curve_text, "files": [f.read_text() if f.exists() else "" for f in files],
+                        "code": code_hash(CODE, ignore_docs=True), "what_ifs": spec["what_ifs"],
+                        "figures": spec["wheel_figures"]})
+
+
+def tasks_of(spec: dict, rows: list[LineRow], folder: Path) -> list[Task]:
+    names = write_curves(spec, rows, folder)
+    return [Task(row.key, inputs_hash(spec, (folder / f"{names[row.key]}.toml").read_text(), row.vehicle), "line",
+                 LineTask(names[row.key], tuple(row_inputs(row).items()))) for row in rows]
+
+
+def row_inputs(row: LineRow) -> dict:
+    return {"id": row.id, "chainage_m": row.chainage_m, "radius_m": row.radius_m, "cant_mm": row.cant_mm,
+            "length_m": row.length_m, "speed_kmh": row.speed_kmh, "vehicle": row.vehicle,
+            "friction": row.condition, "mu": row.mu}
+
+
+def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool = True) -> dict:
+    from .line_outputs import write_outputs
+
+    rows = selected(spec, quick)
+    folder = out / "curves"
+    tasks = tasks_of(spec, rows, folder)
+    table = ResultsTable(out / "table.csv", columns())
+    table.open({t.inputs for t in tasks})
+    todo = pending(tasks, table)
+    stats = {"total": len(tasks), "done_before": len(tasks) - len(todo), "submitted": len(todo)}
+    if todo:
+        from .line_worker import line_case, prepare_worker
+
+        dask = client.get()
+        dask.run(prepare_worker)
+        r = run_tasks(tasks, line_case, table, dask, {"line": LineContext(str(folder), spec["what_ifs"], spec["wheel_figures"])},
+                      desc=spec["name"], progress=progress)
+        stats |= {"run_wall_s": round(r.wall, 3), "dask_workers": r.workers}
+    write_outputs(spec, src, out, quick, rows, [table.rows.get(t.key) for t in tasks])
+    return stats
