@@ -235,6 +235,77 @@ def _continuation(fun_of, y_f, prof, veh, trk, law, lam0, n_ws, steps):
     return good
 
 
+def _complementarity(fun_of, n_ws, y_f, prof, veh, trk, law):
+    """The flange's complementarity (|y| <= y_f, N_f >= 0, one of them at its bound) as one continuous,
+    piecewise smooth system without an active set: each wheelset's first unknown w (mm) is its shift
+    while |w| <= 1e3 y_f, and beyond it the wheelset sits at the flange shift with N_f / Q0 = |w| - 1e3 y_f
+    (a semismooth reformulation; at |w| = 1e3 y_f both branches give the same residuals, N_f = 0).
+    Returns (fun(w), split(w) -> (z, flanges) of the active-set form, join(z, flanges) -> w)."""
+    wf = 1e3 * y_f
+
+    def split(w):
+        z, fl = np.array(w, float), [0] * n_ws
+        for i in range(n_ws):
+            over = abs(w[5 * i]) - wf
+            if over > 0.0:
+                fl[i], z[5 * i] = (1 if w[5 * i] > 0 else -1), over
+        return z, fl
+
+    def join(z, flanges):
+        w = np.array(z, float)
+        for i, f in enumerate(flanges):
+            if f:
+                w[5 * i] = f * (wf + max(z[5 * i], 0.0))
+        return w
+
+    def fun(w):
+        z, fl = split(w)
+        return _safe(fun_of, fl, y_f, prof, veh, trk, law)(z)
+    return fun, split, join
+
+
+def _semismooth(fun_of, starts, y_f, prof, veh, trk, law, n_ws):
+    """Equilibria from ``starts`` ((z, flanges) pairs, e.g. where the active-set iteration stalled) by
+    MINPACK's hybrid method on the complementarity form (``_complementarity``): the flange may come into
+    or out of contact within the iteration instead of between passes.  Each root is then polished in
+    its own flange set by ``_equilibrium`` (the same equations and acceptance as every other solution).
+    Returns the accepted results [(z, r, flanges, keep, passes), ...] (several when the starts land on
+    different equilibria)."""
+    from scipy.optimize import root
+
+    fun, split, join = _complementarity(fun_of, n_ws, y_f, prof, veh, trk, law)
+    found = []
+    for z0, fl0 in starts:
+        w0 = join(z0, fl0)
+        best = w0
+        for method, opts in (("hybr", {"xtol": 1e-13, "maxfev": 3000, "factor": 0.5}),
+                             ("lm", {"xtol": 1e-13, "ftol": 1e-14, "maxiter": 3000})):
+            sol = root(fun, best, method=method, options=opts)
+            if np.max(np.abs(fun(sol.x))) < np.max(np.abs(fun(best))):
+                best = sol.x
+            if np.max(np.abs(fun(best))) < 1e-6:
+                break
+        z, fl = split(best)
+        res = _equilibrium(fun_of, z, list(fl), y_f, prof, veh, trk, law)
+        if res[3] is not None and np.max(np.abs(res[1])) <= 1e-8:
+            found.append(res)
+    return found
+
+
+def _branches(found):
+    """Notes on equilibria of ``found`` other than the first (a wheelset's shift or yaw differing by
+    more than 0.01 mm or 0.01 mrad): the steady curving is then not unique from these starts."""
+    out = []
+    ref = found[0][3][0]
+    for z, r, fl, keep, _ in found[1:]:
+        dy = max(abs(a.y - b.y) for a, b in zip(ref, keep[0]))
+        dp = max(abs(a.psi - b.psi) for a, b in zip(ref, keep[0]))
+        if dy > 1e-5 or dp > 1e-5:
+            out.append(f"another equilibrium: flange set {fl}, shifts {[round(1e3 * w.y, 2) for w in keep[0]]} mm, "
+                       f"yaws {[round(1e3 * w.psi, 2) for w in keep[0]]} mrad (kept the first)")
+    return out
+
+
 def solve(prof: Profiles, veh: Vehicle, trk: Track, law: CreepLaw, bogie: bool = True,
           lam0: float = 0.1, steps: int = 8) -> CurvingSolution:
     """Steady curving of the leading bogie (bogie=True) or of one free wheelset.  Started in
@@ -244,10 +315,23 @@ def solve(prof: Profiles, veh: Vehicle, trk: Track, law: CreepLaw, bogie: bool =
     y_f = flange_shift(prof.wheel, prof.rail, trk.c, prof.edge)
     fun_of = bogie_residual if bogie else wheelset_only_residual
     n_ws = 2 if bogie else 1
+    stalled, tried = [], []
     for z0, fl0 in _starts(veh, trk, lam0, n_ws, y_f):
+        tried.append((z0.copy(), list(fl0)))
         z, r, flanges, keep, passes = _equilibrium(fun_of, z0, fl0, y_f, prof, veh, trk, law)
         if keep is not None and np.max(np.abs(r)) <= 1e-8:
             break
+        if np.all(np.isfinite(z)):
+            stalled.append((float(np.max(np.abs(_safe(fun_of, flanges, y_f, prof, veh, trk, law)(z)))), z.copy(),
+                            list(flanges)))
+    notes = []
+    if keep is None or np.max(np.abs(r)) > 1e-8:
+        stalled.sort(key=lambda s: s[0])
+        found = _semismooth(fun_of, [s[1:] for s in stalled] + tried, y_f, prof, veh, trk, law, n_ws)
+        if found:
+            z, r, flanges, keep, passes = found[0]
+            notes.append("found by the semismooth (complementarity) fallback")
+            notes += _branches(found)
     if keep is None or np.max(np.abs(r)) > 1e-8:
         z, r, flanges, keep, passes = _continuation(fun_of, y_f, prof, veh, trk, law, lam0, n_ws, steps)
     res = float(np.max(np.abs(r)))
@@ -260,7 +344,7 @@ def solve(prof: Profiles, veh: Vehicle, trk: Track, law: CreepLaw, bogie: bool =
                 raise CurvingError(f"wheel a{k}{'o' if c.side > 0 else 'i'}: its {c.point.zone} contact would pull "
                                    f"({1e-3 * c.N:.1f} kN): the wheel lifts off it (flange climbing or wheel unloading), "
                                    f"beyond the steady model (R = {trk.radius:g} m)")
-    return CurvingSolution(keep[0], keep[1], keep[2], y_f, res, keep[3], passes)
+    return CurvingSolution(keep[0], keep[1], keep[2], y_f, res, keep[3], passes, notes)
 
 
 __all__ = ["CurvingError", "CurvingSolution", "WheelsetState", "solve", "box_loads", "TOL"]
