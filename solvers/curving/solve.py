@@ -64,7 +64,18 @@ class CurvingSolution:
 
 
 def _unpack_wheelset(q, flange, y_f, Q0):
-    """(y, psi, eps, loads outer, loads inner, N_f) of a wheelset's five scaled unknowns."""
+    """(y, psi, eps, loads outer, loads inner, N_f) of a wheelset's five scaled unknowns.  ``flange``:
+    0 (free), +-1 (that flange in contact, q[0] = N_f / Q0) or a two-point tread contact
+    ``(y_j, side, y^W before, y^W after)`` (``semismooth``): the wheelset at shift y_j, q[0] the share of
+    that wheel's tread load on the second point."""
+    if isinstance(flange, tuple):
+        y_j, side, ya, yb = flange
+        th = q[0]
+        lo, li = {"tread": Q0 * q[3]}, {"tread": Q0 * q[4]}
+        two = lo if side > 0 else li
+        N = two.pop("tread")
+        two[("tread", ya)], two[("tread", yb)] = (1.0 - th) * N, th * N
+        return y_j, 1e-3 * q[1], 1e-3 * q[2], lo, li, 0.0
     y = flange * y_f if flange else 1e-3 * q[0]
     Nf = Q0 * q[0] if flange else 0.0
     lo, li = {"tread": Q0 * q[3]}, {"tread": Q0 * q[4]}
@@ -79,7 +90,7 @@ def _wheelset(q, flange, y_f, x_i, prof, veh, trk, law):
     y, psi, eps, lo, li, Nf = _unpack_wheelset(q, flange, y_f, veh.wheel_load)
     contacts = (wheel_contacts(prof, veh, trk, law, +1, y, psi, eps, lo)
                 + wheel_contacts(prof, veh, trk, law, -1, y, psi, eps, li))
-    return WheelsetState(x_i, y, psi, eps, flange, Nf, contacts)
+    return WheelsetState(x_i, y, psi, eps, flange if isinstance(flange, int) else 0, Nf, contacts)
 
 
 def _suspension(ws: WheelsetState, veh: Vehicle, trk: Track, yb: float, pb: float):
@@ -235,63 +246,6 @@ def _continuation(fun_of, y_f, prof, veh, trk, law, lam0, n_ws, steps):
     return good
 
 
-def _complementarity(fun_of, n_ws, y_f, prof, veh, trk, law):
-    """The flange's complementarity (|y| <= y_f, N_f >= 0, one of them at its bound) as one continuous,
-    piecewise smooth system without an active set: each wheelset's first unknown w (mm) is its shift
-    while |w| <= 1e3 y_f, and beyond it the wheelset sits at the flange shift with N_f / Q0 = |w| - 1e3 y_f
-    (a semismooth reformulation; at |w| = 1e3 y_f both branches give the same residuals, N_f = 0).
-    Returns (fun(w), split(w) -> (z, flanges) of the active-set form, join(z, flanges) -> w)."""
-    wf = 1e3 * y_f
-
-    def split(w):
-        z, fl = np.array(w, float), [0] * n_ws
-        for i in range(n_ws):
-            over = abs(w[5 * i]) - wf
-            if over > 0.0:
-                fl[i], z[5 * i] = (1 if w[5 * i] > 0 else -1), over
-        return z, fl
-
-    def join(z, flanges):
-        w = np.array(z, float)
-        for i, f in enumerate(flanges):
-            if f:
-                w[5 * i] = f * (wf + max(z[5 * i], 0.0))
-        return w
-
-    def fun(w):
-        z, fl = split(w)
-        return _safe(fun_of, fl, y_f, prof, veh, trk, law)(z)
-    return fun, split, join
-
-
-def _semismooth(fun_of, starts, y_f, prof, veh, trk, law, n_ws):
-    """Equilibria from ``starts`` ((z, flanges) pairs, e.g. where the active-set iteration stalled) by
-    MINPACK's hybrid method on the complementarity form (``_complementarity``): the flange may come into
-    or out of contact within the iteration instead of between passes.  Each root is then polished in
-    its own flange set by ``_equilibrium`` (the same equations and acceptance as every other solution).
-    Returns the accepted results [(z, r, flanges, keep, passes), ...] (several when the starts land on
-    different equilibria)."""
-    from scipy.optimize import root
-
-    fun, split, join = _complementarity(fun_of, n_ws, y_f, prof, veh, trk, law)
-    found = []
-    for z0, fl0 in starts:
-        w0 = join(z0, fl0)
-        best = w0
-        for method, opts in (("hybr", {"xtol": 1e-13, "maxfev": 3000, "factor": 0.5}),
-                             ("lm", {"xtol": 1e-13, "ftol": 1e-14, "maxiter": 3000})):
-            sol = root(fun, best, method=method, options=opts)
-            if np.max(np.abs(fun(sol.x))) < np.max(np.abs(fun(best))):
-                best = sol.x
-            if np.max(np.abs(fun(best))) < 1e-6:
-                break
-        z, fl = split(best)
-        res = _equilibrium(fun_of, z, list(fl), y_f, prof, veh, trk, law)
-        if res[3] is not None and np.max(np.abs(res[1])) <= 1e-8:
-            found.append(res)
-    return found
-
-
 def _branches(found):
     """Notes on equilibria of ``found`` other than the first (a wheelset's shift or yaw differing by
     more than 0.01 mm or 0.01 mrad): the steady curving is then not unique from these starts."""
@@ -327,10 +281,15 @@ def solve(prof: Profiles, veh: Vehicle, trk: Track, law: CreepLaw, bogie: bool =
     notes = []
     if keep is None or np.max(np.abs(r)) > 1e-8:
         stalled.sort(key=lambda s: s[0])
-        found = _semismooth(fun_of, [s[1:] for s in stalled] + tried, y_f, prof, veh, trk, law, n_ws)
+        from .semismooth import semismooth
+
+        found = semismooth(fun_of, [s[1:] for s in stalled] + tried, y_f, prof, veh, trk, law, n_ws)
         if found:
             z, r, flanges, keep, passes = found[0]
             notes.append("found by the semismooth (complementarity) fallback")
+            notes += [f"two-point tread contact: wheel a{i + 1}{'o' if f[1] > 0 else 'i'} at a shift of "
+                      f"{1e3 * f[0]:+.3f} mm, {100 * z[5 * i]:.1f} % of its tread load on y^W = {1e3 * f[3]:+.2f} mm"
+                      for i, f in enumerate(flanges) if isinstance(f, tuple)]
             notes += _branches(found)
     if keep is None or np.max(np.abs(r)) > 1e-8:
         z, r, flanges, keep, passes = _continuation(fun_of, y_f, prof, veh, trk, law, lam0, n_ws, steps)
