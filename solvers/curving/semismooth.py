@@ -89,15 +89,19 @@ class Complementarity:
 
 def semismooth(fun_of, starts, y_f, prof, veh, trk, law, n_ws):
     """Equilibria from ``starts`` ((z, flanges) pairs of the active-set form: where it stalled, its
-    starting points): [(z, r, flanges, keep, 0), ...], each accepted (residual <= 1e-8 of Q0)."""
+    starting points): [(z, r, flanges, keep, 0), ...], each accepted (residual <= 1e-8 of Q0); after the
+    first, one more start is tried, so that a second equilibrium (another branch) can be reported."""
     from scipy.optimize import root
 
     from .solve import _newton
 
     cp = Complementarity(fun_of, n_ws, y_f, prof, veh, trk, law)
     fun = cp.residual
-    found = []
+    found, tries = [], 0
     for z0, fl0 in starts:
+        if found and tries >= 1:
+            break  # one more start after the first equilibrium: a check for another branch, not a search
+        tries += bool(found)
         best = cp.join(z0, fl0)
         for method, opts in (("hybr", {"xtol": 1e-13, "maxfev": 3000, "factor": 0.5}),
                              ("lm", {"xtol": 1e-13, "ftol": 1e-14, "maxiter": 3000})):
@@ -114,6 +118,4 @@ def semismooth(fun_of, starts, y_f, prof, veh, trk, law, n_ws):
         r = fun_of(z, fl, y_f, prof, veh, trk, law, keep)
         if np.max(np.abs(r)) <= 1e-8:
             found.append((z, r, fl, keep, 0))
-            if len(found) >= 2:
-                break
     return found
