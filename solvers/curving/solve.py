@@ -10,6 +10,9 @@ rolling, then Newton steps with a finite-difference Jacobian until every residua
 TOL (relative to the wheel load).  Flange contact: a wheelset whose shift passes the flange
 shift y_f (``wheelrail.flange_shift``) is put in two-point contact (y = +-y_f, N_f unknown);
 one whose flange force comes out negative is released; repeated until the set is stable.
+When that stalls (the set cycling, or a worn pair's tread contact jumping between two points at
+the equilibrium's shift: a two-point tread contact), ``semismooth`` solves the same equations
+with the unilateral contacts as one continuous complementarity system, before the continuation.
 """
 from __future__ import annotations
 
@@ -264,7 +267,9 @@ def solve(prof: Profiles, veh: Vehicle, trk: Track, law: CreepLaw, bogie: bool =
           lam0: float = 0.1, steps: int = 8) -> CurvingSolution:
     """Steady curving of the leading bogie (bogie=True) or of one free wheelset.  Started in
     pure rolling (conicity lam0), and for a bogie also in flange contact; when neither
-    converges, continued in curvature 1/R from a ten times larger radius (``_continuation``)."""
+    converges, the semismooth complementarity form from where they stalled (``semismooth``: notes
+    say so, name a two-point tread contact and another equilibrium found), and last continued in
+    curvature 1/R from a ten times larger radius (``_continuation``)."""
 
     y_f = flange_shift(prof.wheel, prof.rail, trk.c, prof.edge)
     fun_of = bogie_residual if bogie else wheelset_only_residual

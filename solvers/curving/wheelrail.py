@@ -132,7 +132,9 @@ def _zone_point(wheel, rail_t, shift: float, zone: str, edge: float, near: float
     climbing the flange root, as S1002 on a new head), the lowest point of all; the flange
     point is the lowest local minimum on the flange side that a ridge higher than RIDGE
     separates from the tread point (a second contact zone), else None.  Refined by Newton's
-    method on the splines."""
+    method on the splines.  Tread minima within TIE of each other on the grid are ranked by their
+    refined heights, so that the tread point jumps exactly where ``tread_jumps`` finds both equally
+    low; ``near``: the tread minimum nearest to that y^W."""
     y = wheel.y
     rz = _rail_points(rail_t)
     sep = -wheel.z - np.interp(y + shift, rail_t.y, rz, left=np.nan, right=np.nan)
