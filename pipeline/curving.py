@@ -301,7 +301,7 @@ def table(sol: CurveSolution) -> str:
                      "-" if math.isnan(w.nadal) else f"{w.nadal:.2f} (limit {w.nadal_limit:.2f})"))
     width = [max(len(r[k]) for r in rows) for k in range(len(cols))]
     lines = ["  ".join(s.rjust(n) for s, n in zip(r, width)) for r in rows]
-    return "\n".join([head, *lines])
+    return "\n".join([head, *lines, *(f"note: {n}" for n in sol.solution.notes)])
 
 
 def as_dict(w: WheelOperatingPoint) -> dict:

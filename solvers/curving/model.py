@@ -147,7 +147,8 @@ def _wheel_contacts(prof: Profiles, veh: Vehicle, trk: Track, law: CreepLaw, sid
     spin eps; loads: {'tread': N, 'flange': N or absent}."""
     out = []
     for zone, N in loads.items():
-        p = zone_point(prof.wheel, prof.rail, trk.c + side * y, zone, prof.edge)
+        zone, near = (zone, None) if isinstance(zone, str) else zone  # ("tread", y^W): one of two tread points
+        p = zone_point(prof.wheel, prof.rail, trk.c + side * y, zone, prof.edge, near)
         if p is None:
             raise ValueError(f"the {zone} of the {'outer' if side > 0 else 'inner'} wheel does not face its rail "
                              f"(wheelset shift {1e3 * y:+.2f} mm)")

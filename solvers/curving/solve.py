@@ -10,6 +10,9 @@ rolling, then Newton steps with a finite-difference Jacobian until every residua
 TOL (relative to the wheel load).  Flange contact: a wheelset whose shift passes the flange
 shift y_f (``wheelrail.flange_shift``) is put in two-point contact (y = +-y_f, N_f unknown);
 one whose flange force comes out negative is released; repeated until the set is stable.
+When that stalls (the set cycling, or a worn pair's tread contact jumping between two points at
+the equilibrium's shift: a two-point tread contact), ``semismooth`` solves the same equations
+with the unilateral contacts as one continuous complementarity system, before the continuation.
 """
 from __future__ import annotations
 
@@ -64,7 +67,18 @@ class CurvingSolution:
 
 
 def _unpack_wheelset(q, flange, y_f, Q0):
-    """(y, psi, eps, loads outer, loads inner, N_f) of a wheelset's five scaled unknowns."""
+    """(y, psi, eps, loads outer, loads inner, N_f) of a wheelset's five scaled unknowns.  ``flange``:
+    0 (free), +-1 (that flange in contact, q[0] = N_f / Q0) or a two-point tread contact
+    ``(y_j, side, y^W before, y^W after)`` (``semismooth``): the wheelset at shift y_j, q[0] the share of
+    that wheel's tread load on the second point."""
+    if isinstance(flange, tuple):
+        y_j, side, ya, yb = flange
+        th = q[0]
+        lo, li = {"tread": Q0 * q[3]}, {"tread": Q0 * q[4]}
+        two = lo if side > 0 else li
+        N = two.pop("tread")
+        two[("tread", ya)], two[("tread", yb)] = (1.0 - th) * N, th * N
+        return y_j, 1e-3 * q[1], 1e-3 * q[2], lo, li, 0.0
     y = flange * y_f if flange else 1e-3 * q[0]
     Nf = Q0 * q[0] if flange else 0.0
     lo, li = {"tread": Q0 * q[3]}, {"tread": Q0 * q[4]}
@@ -79,7 +93,7 @@ def _wheelset(q, flange, y_f, x_i, prof, veh, trk, law):
     y, psi, eps, lo, li, Nf = _unpack_wheelset(q, flange, y_f, veh.wheel_load)
     contacts = (wheel_contacts(prof, veh, trk, law, +1, y, psi, eps, lo)
                 + wheel_contacts(prof, veh, trk, law, -1, y, psi, eps, li))
-    return WheelsetState(x_i, y, psi, eps, flange, Nf, contacts)
+    return WheelsetState(x_i, y, psi, eps, flange if isinstance(flange, int) else 0, Nf, contacts)
 
 
 def _suspension(ws: WheelsetState, veh: Vehicle, trk: Track, yb: float, pb: float):
@@ -235,19 +249,53 @@ def _continuation(fun_of, y_f, prof, veh, trk, law, lam0, n_ws, steps):
     return good
 
 
+def _branches(found):
+    """Notes on equilibria of ``found`` other than the first (a wheelset's shift or yaw differing by
+    more than 0.01 mm or 0.01 mrad): the steady curving is then not unique from these starts."""
+    out = []
+    ref = found[0][3][0]
+    for z, r, fl, keep, _ in found[1:]:
+        dy = max(abs(a.y - b.y) for a, b in zip(ref, keep[0]))
+        dp = max(abs(a.psi - b.psi) for a, b in zip(ref, keep[0]))
+        if dy > 1e-5 or dp > 1e-5:
+            out.append(f"another equilibrium: flange set {fl}, shifts {[round(1e3 * w.y, 2) for w in keep[0]]} mm, "
+                       f"yaws {[round(1e3 * w.psi, 2) for w in keep[0]]} mrad (kept the first)")
+    return out
+
+
 def solve(prof: Profiles, veh: Vehicle, trk: Track, law: CreepLaw, bogie: bool = True,
           lam0: float = 0.1, steps: int = 8) -> CurvingSolution:
     """Steady curving of the leading bogie (bogie=True) or of one free wheelset.  Started in
     pure rolling (conicity lam0), and for a bogie also in flange contact; when neither
-    converges, continued in curvature 1/R from a ten times larger radius (``_continuation``)."""
+    converges, the semismooth complementarity form from where they stalled (``semismooth``: notes
+    say so, name a two-point tread contact and another equilibrium found), and last continued in
+    curvature 1/R from a ten times larger radius (``_continuation``)."""
 
     y_f = flange_shift(prof.wheel, prof.rail, trk.c, prof.edge)
     fun_of = bogie_residual if bogie else wheelset_only_residual
     n_ws = 2 if bogie else 1
+    stalled, tried = [], []
     for z0, fl0 in _starts(veh, trk, lam0, n_ws, y_f):
+        tried.append((z0.copy(), list(fl0)))
         z, r, flanges, keep, passes = _equilibrium(fun_of, z0, fl0, y_f, prof, veh, trk, law)
         if keep is not None and np.max(np.abs(r)) <= 1e-8:
             break
+        if np.all(np.isfinite(z)):
+            stalled.append((float(np.max(np.abs(_safe(fun_of, flanges, y_f, prof, veh, trk, law)(z)))), z.copy(),
+                            list(flanges)))
+    notes = []
+    if keep is None or np.max(np.abs(r)) > 1e-8:
+        stalled.sort(key=lambda s: s[0])
+        from .semismooth import semismooth
+
+        found = semismooth(fun_of, [s[1:] for s in stalled] + tried, y_f, prof, veh, trk, law, n_ws)
+        if found:
+            z, r, flanges, keep, passes = found[0]
+            notes.append("found by the semismooth (complementarity) fallback")
+            notes += [f"two-point tread contact: wheel a{i + 1}{'o' if f[1] > 0 else 'i'} at a shift of "
+                      f"{1e3 * f[0]:+.3f} mm, {100 * z[5 * i]:.1f} % of its tread load on y^W = {1e3 * f[3]:+.2f} mm"
+                      for i, f in enumerate(flanges) if isinstance(f, tuple)]
+            notes += _branches(found)
     if keep is None or np.max(np.abs(r)) > 1e-8:
         z, r, flanges, keep, passes = _continuation(fun_of, y_f, prof, veh, trk, law, lam0, n_ws, steps)
     res = float(np.max(np.abs(r)))
@@ -260,7 +308,7 @@ def solve(prof: Profiles, veh: Vehicle, trk: Track, law: CreepLaw, bogie: bool =
                 raise CurvingError(f"wheel a{k}{'o' if c.side > 0 else 'i'}: its {c.point.zone} contact would pull "
                                    f"({1e-3 * c.N:.1f} kN): the wheel lifts off it (flange climbing or wheel unloading), "
                                    f"beyond the steady model (R = {trk.radius:g} m)")
-    return CurvingSolution(keep[0], keep[1], keep[2], y_f, res, keep[3], passes)
+    return CurvingSolution(keep[0], keep[1], keep[2], y_f, res, keep[3], passes, notes)
 
 
 __all__ = ["CurvingError", "CurvingSolution", "WheelsetState", "solve", "box_loads", "TOL"]

@@ -22,7 +22,7 @@ def wheel_points(sol, mu: float) -> list[dict]:
     for k, ws in enumerate(sol.wheelsets, start=1):
         for side, tag in ((+1, "o"), (-1, "i")):
             cs = [c for c in ws.contacts if c.side == side]
-            tread = next(c for c in cs if c.point.zone == "tread")
+            tread = max((c for c in cs if c.point.zone == "tread"), key=lambda c: c.N)  # of two: the more loaded
             flange = next((c for c in cs if c.point.zone == "flange"), None)
             Y = sum(_rail_loads(c)[0] for c in cs)
             Q = sum(_rail_loads(c)[1] for c in cs)

@@ -31,6 +31,7 @@ import numpy as np
 from geometry.contact_point import FLANGE_ANGLE_DEG, RIDGE
 
 FLANGE_SLOPE = math.tan(math.radians(FLANGE_ANGLE_DEG))
+TIE = 1e-6   # m: tread minima this close in height on the grid are told apart by their refined heights
 
 
 @dataclass(frozen=True)
@@ -104,23 +105,25 @@ _ZONE: dict = {}
 _ZONE_MAX = 50000
 
 
-def zone_point(wheel, rail_t, shift: float, zone: str, edge: float) -> ContactPoint | None:
+def zone_point(wheel, rail_t, shift: float, zone: str, edge: float, near: float | None = None) -> ContactPoint | None:
     """``_zone_point`` memoised per profiles (by identity, held while cached), shift, zone and edge: the
     equilibrium's iterations ask again and again for the contact at an unchanged shift (the Jacobian
     columns of the other unknowns: yaw, spin, loads, the other wheelset, the frame), ~4 in 5 calls of
-    a bogie's solve.  The same numbers (a pure function of its arguments)."""
-    key = (id(wheel), id(rail_t), float(shift), zone, float(edge))
+    a bogie's solve.  The same numbers (a pure function of its arguments).  ``near`` (y^W, m): the
+    tread zone's local minimum nearest to it instead of the lowest (one point of a two-point tread
+    contact, ``tread_jumps``)."""
+    key = (id(wheel), id(rail_t), float(shift), zone, float(edge), near)
     hit = _ZONE.get(key)
     if hit is not None and hit[0] is wheel and hit[1] is rail_t:
         return hit[2]
-    p = _zone_point(wheel, rail_t, shift, zone, edge)
+    p = _zone_point(wheel, rail_t, shift, zone, edge, near)
     if len(_ZONE) >= _ZONE_MAX:
         _ZONE.clear()
     _ZONE[key] = (wheel, rail_t, p)
     return p
 
 
-def _zone_point(wheel, rail_t, shift: float, zone: str, edge: float) -> ContactPoint | None:
+def _zone_point(wheel, rail_t, shift: float, zone: str, edge: float, near: float | None = None) -> ContactPoint | None:
     """The contact point of the tread or of the flange at this shift.
 
     On the profile grid (the rail interpolated linearly between its points, ``rail_t.y``): the
@@ -129,7 +132,9 @@ def _zone_point(wheel, rail_t, shift: float, zone: str, edge: float) -> ContactP
     climbing the flange root, as S1002 on a new head), the lowest point of all; the flange
     point is the lowest local minimum on the flange side that a ridge higher than RIDGE
     separates from the tread point (a second contact zone), else None.  Refined by Newton's
-    method on the splines."""
+    method on the splines.  Tread minima within TIE of each other on the grid are ranked by their
+    refined heights, so that the tread point jumps exactly where ``tread_jumps`` finds both equally
+    low; ``near``: the tread minimum nearest to that y^W."""
     y = wheel.y
     rz = _rail_points(rail_t)
     sep = -wheel.z - np.interp(y + shift, rail_t.y, rz, left=np.nan, right=np.nan)
@@ -139,6 +144,14 @@ def _zone_point(wheel, rail_t, shift: float, zone: str, edge: float) -> ContactP
     mins = _minima(sep)
     tread = mins[y[mins] > edge]
     t = int(tread[np.argmin(sep[tread])]) if tread.size else int(np.argmin(sep))
+    h = y[1] - y[0]
+    if near is not None and zone == "tread" and tread.size:
+        t = int(tread[np.argmin(np.abs(y[tread] - near))])
+    elif tread.size > 1:  # two tread minima about equally low on the grid: the lower once refined
+        close = tread[sep[tread] - sep[t] < TIE]
+        if close.size > 1:
+            t = int(min(close, key=lambda j: float(_sep(wheel, rail_t, shift, _refine(
+                wheel, rail_t, shift, float(y[j]), float(y[j] - 8 * h), float(y[j] + 8 * h))))))
     if zone == "tread":
         i = t
     else:
@@ -147,7 +160,6 @@ def _zone_point(wheel, rail_t, shift: float, zone: str, edge: float) -> ContactP
         if not fl:
             return None
         i = int(min(fl, key=lambda j: sep[j]))
-    h = y[1] - y[0]
     yc = _refine(wheel, rail_t, shift, float(y[i]), float(y[i] - 8 * h), float(y[i] + 8 * h))
     Y = yc + shift
     slope = float(rail_t.slope(Y))
@@ -180,3 +192,33 @@ def flange_shift(wheel, rail_t, c: float, edge: float, span: float = 0.04) -> fl
     if k.size == 0:
         return math.inf  # no flange within reach (a flangeless profile): no constraint
     return float(brentq(g, ys[k[0]], ys[k[0] + 1], xtol=1e-13, rtol=1e-13))
+
+
+def tread_jumps(wheel, rail_t, c: float, edge: float, side: int, y_max: float, step: float = 5e-5,
+                jump: float = 1e-3) -> list[tuple[float, float, float]]:
+    """Wheelset shifts y (m, outward, |y| < y_max) where this wheel's (side +1 outer, -1 inner) tread
+    contact jumps between two local minima of the separation (a worn pair's two-point tread contact:
+    both points equally low there): [(y, y^W before, y^W after), ...] in increasing y, "before"
+    and "after" in the sense of increasing y.  Found as jumps of more than ``jump`` in y^W on a
+    grid of ``step`` and refined by brentq on the two points' separations' difference."""
+    from scipy.optimize import brentq
+
+    ys = np.arange(-y_max, y_max, step)
+    yw = np.array([zone_point(wheel, rail_t, c + side * v, "tread", edge).y_wheel for v in ys])
+    out = []
+    for k in np.flatnonzero(np.abs(np.diff(yw)) > jump):
+        a, b = float(yw[k]), float(yw[k + 1])
+
+        def gap(v):
+            pa = zone_point(wheel, rail_t, c + side * v, "tread", edge, near=a)
+            pb = zone_point(wheel, rail_t, c + side * v, "tread", edge, near=b)
+            return pb.sep - pa.sep
+        try:
+            yj = float(brentq(gap, ys[k], ys[k + 1], xtol=1e-13, rtol=1e-13))
+        except ValueError:
+            continue  # the two minima do not both exist across the step: no two-point contact
+        pa = zone_point(wheel, rail_t, c + side * yj, "tread", edge, near=a)
+        pb = zone_point(wheel, rail_t, c + side * yj, "tread", edge, near=b)
+        if abs(pb.y_wheel - pa.y_wheel) > jump:
+            out.append((yj, pa.y_wheel, pb.y_wheel))
+    return out
