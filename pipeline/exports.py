@@ -41,7 +41,7 @@ def radiation_tables(a: dict, out, speed_m_s: float) -> dict:
     written["spectrum"] = artifacts.save_csv(out / "radiate_spectrum.csv", ["f_hz", "W_W", "L_W_dB", "is_tone"], (
         [float(x), float(w), float(lw), int(t)] for x, w, lw, t in zip(f, W, level(W), a["is_tone"])))
     written["forces"] = artifacts.save_csv(out / "radiate_forces.csv", ["f_hz", "F2_rms_N", "F3_rms_N"], (
-        [float(x), float(p), float(q)] for x, p, q in zip(a["force_f"], a["F2_spectrum"], a["F3_spectrum"])))
+        [float(x), float(abs(p)), float(abs(q))] for x, p, q in zip(a["force_f"], a["F2_spectrum"], a["F3_spectrum"])))
     tone = np.asarray(a["is_tone"], bool)
     written["tones"] = artifacts.save_csv(
         out / "radiate_tones.csv", ["f_hz", "F2_rms_N", "F3_rms_N", "F2_phase_rad", "F3_phase_rad", "W_W"],

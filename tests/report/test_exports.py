@@ -34,7 +34,7 @@ def synthetic_radiation():
     o = np.argsort(f)
     F = np.linspace(0, 6500, 200)
     return {"f": f[o], "W": W[o], "is_tone": np.concatenate([np.zeros(f_bins.size, bool), np.ones(3, bool)])[o],
-            "force_f": F, "F2_spectrum": np.exp(-F / 1e3), "F3_spectrum": 0.4 * np.exp(-F / 1e3),
+            "force_f": F, "F2_spectrum": np.exp(-F / 1e3 + 1j * F / 100), "F3_spectrum": 0.4 * np.exp(-F / 1e3 - 1j * F / 70),
             "tone_f": tone_f, "tone_F2": np.array([1500 + 20j, 150j, 10.0]),
             "tone_F3": np.array([600 - 5j, 60.0, 4j])}
 
@@ -123,6 +123,9 @@ def test_spectra_csv_read_back(tmp_path):
     np.testing.assert_allclose([float(r[5]) for r in rows], [0.05, 2e-4, 3e-5])
     h, rows = read_csv(tmp_path / "radiate_forces.csv")
     assert h == ["f_hz", "F2_rms_N", "F3_rms_N"] and len(rows) == 200
+    # the complex spectra's magnitudes (their real parts once were written)
+    np.testing.assert_allclose([float(r[1]) for r in rows], np.abs(a["F2_spectrum"]), rtol=1e-15)
+    np.testing.assert_allclose([float(r[2]) for r in rows], np.abs(a["F3_spectrum"]), rtol=1e-15)
 
 
 def test_default_case_export_matches_its_bands():
