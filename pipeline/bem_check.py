@@ -20,6 +20,7 @@ import argparse
 import csv
 import logging
 import math
+import os
 import time
 from pathlib import Path
 
@@ -47,7 +48,8 @@ def wheel_mesh(model, n: int, f: float, ds_max: float, n_phi: int | None = None)
     return V, T, phi, loop, outward_normals(rz)
 
 
-def wheel_rows(model, harmonics, ds_max: float, ground: float | None) -> list[dict]:
+def wheel_rows(model, harmonics, ds_max: float, ground: float | None, solver: str = "revolution",
+               ground_order: int | None = None, on_row=None) -> list[dict]:
     """Per (n,0,a) mode of ``harmonics`` and force direction: L_W of harmonic n by the radiation stage
     and by the BEM (free field, ground) at the mode's eigenfrequency, unit RMS force."""
     from postprocess.force_radiation import harmonic_power
@@ -58,25 +60,30 @@ def wheel_rows(model, harmonics, ds_max: float, ground: float | None) -> list[di
         i = [j for j in range(len(model.f_r)) if model.n[j] == n and model.m[j] == 0 and model.cls[j] == "a"][0]
         f = float(model.f_r[i])
         forces = ((1.0, 0.0), (0.0, 1.0))
-        free, gr, nv, t_free, t_gr = _powers(model, n, f, forces, ds_max, ground)
+        free, gr, nv, t_free, t_gr = _powers(model, n, f, forces, ds_max, ground, None, solver, ground_order)
         h = list(model.harmonics).index(n)
         for d, (F2, F3) in enumerate(forces):
             W_s = float(harmonic_power(model, f, F2, F3)[h, 0])
             rows.append({"mode": f"({n},0,a)", "f_hz": f, "force": ("lateral", "radial")[d], "vertices": nv,
-                         "L_W_simple": bem.level(W_s), "L_W_bem_free": bem.level(free[d]),
+                         "solver": solver, "L_W_simple": bem.level(W_s), "L_W_bem_free": bem.level(free[d]),
                          "L_W_bem_ground": bem.level(gr[d]) if np.isfinite(gr[d]) else np.nan,
                          "dL_free": bem.level(free[d]) - bem.level(W_s),
                          "dL_ground": bem.level(gr[d]) - bem.level(W_s) if np.isfinite(gr[d]) else np.nan,
-                         "wall_free_s": t_free, "wall_ground_s": t_gr})
+                         "wall_free_s": t_free, "wall_ground_s": t_gr, "load": _load()})
             log.info("%s", rows[-1])
+        if on_row is not None:
+            on_row(rows[-2:])
     return rows
 
 
-def _powers(model, n: int, f: float, forces, ds_max: float, ground: float | None, n_phi: int | None = None):
-    """BEM powers (free, ground) [W] of harmonic n at f for complex RMS force pairs ``forces``, and the
-    mesh's vertex count and wall times."""
+def _powers(model, n: int, f: float, forces, ds_max: float, ground: float | None, n_phi: int | None = None,
+            solver: str = "revolution", ground_order: int | None = None):
+    """BEM powers (free, ground) [W] of harmonic n at f for complex RMS force pairs ``forces``, the
+    mesh's vertex count and wall times: ``solver`` "revolution" (``solvers.bem_revolution``: the first
+    block row per harmonic, the ground by the mirror symmetry; ``ground_order`` its cross block's
+    quadrature order) or "3-D" (``solvers.bem``: the whole mesh, an image wheel for the ground)."""
     from postprocess.wheel_bem import normal_velocity
-    from solvers import bem
+    from solvers import bem, bem_revolution
 
     modes = model.meta["modes"]
     idx = model.groups[list(model.harmonics).index(n)]
@@ -85,45 +92,76 @@ def _powers(model, n: int, f: float, forces, ds_max: float, ground: float | None
                                           F2, F3, n)
            for F2, F3 in forces]
     k = 2 * np.pi * f / model.c0
+    plane = None if ground is None else -(float(model.meta["contact"].r) + ground)
+    gr, t_gr = [np.nan] * len(vns), np.nan
     t0 = time.perf_counter()
-    free = bem.radiated_power(bem.grid_from_arrays(V, T), k, vns, model.rho, model.c0)
-    t_free, gr, t_gr = time.perf_counter() - t0, [np.nan] * len(vns), np.nan
-    if ground is not None:
-        Vm, Tm = bem.mirrored(V, T, axis=0, plane=-(float(model.meta["contact"].r) + ground))
-        t0 = time.perf_counter()
-        gr = [0.5 * w for w in bem.radiated_power(bem.grid_from_arrays(Vm, Tm), k,
-                                                  [np.concatenate([v, v]) for v in vns], model.rho, model.c0)]
-        t_gr = time.perf_counter() - t0
+    if solver == "revolution":
+        rows = bem_revolution.first_block_row(V, T, len(loop), k)
+        free = bem_revolution.revolution_power(V, T, len(loop), k, vns, n, model.rho, model.c0, rows=rows)
+        t_free = time.perf_counter() - t0
+        if plane is not None:
+            t0 = time.perf_counter()
+            gr = bem_revolution.ground_power(V, T, len(loop), k, vns, 0, plane, model.rho, model.c0, rows=rows,
+                                             order=ground_order)
+            t_gr = time.perf_counter() - t0
+    else:
+        free = bem.radiated_power(bem.grid_from_arrays(V, T), k, vns, model.rho, model.c0)
+        t_free = time.perf_counter() - t0
+        if plane is not None:
+            Vm, Tm = bem.mirrored(V, T, axis=0, plane=plane)
+            t0 = time.perf_counter()
+            gr = [0.5 * w for w in bem.radiated_power(bem.grid_from_arrays(Vm, Tm), k,
+                                                      [np.concatenate([v, v]) for v in vns], model.rho, model.c0)]
+            t_gr = time.perf_counter() - t0
     return free, gr, len(V), t_free, t_gr
 
 
 CONVERGENCE = ((0.03, None), (0.03, 36), (0.015, 24), (0.015, 36), (0.03, 48), (0.015, 48))
 
 
-def convergence_rows(model, n: int = 2, done: list[dict] = ()) -> list[dict]:
-    """Mesh convergence of the free-field Delta L_W of (n,0,a) (unit lateral force): the element size
-    along the outline and the number of vertices around (``CONVERGENCE``); meshes in ``done`` (rows of
-    an earlier run) are kept, not recomputed."""
+def convergence_meshes(model, n: int):
+    """The meshes of the convergence check of (n,0,a): ``CONVERGENCE`` for (2,0,a) (as first measured);
+    otherwise the lambda/6 mesh, the element size along the outline halved, the vertices around x 1.5,
+    and both."""
+    if n == 2:
+        return CONVERGENCE
+    f = float(model.f_r[[j for j in range(len(model.f_r)) if model.n[j] == n and model.m[j] == 0
+                         and model.cls[j] == "a"][0]])
+    h = model.c0 / f / 6
+    V, _, _, loop, _ = wheel_mesh(model, n, f, 0.03)
+    around = len(V) // len(loop)
+    return ((0.03, None), (min(h, 0.03) / 2, None), (0.03, round(1.5 * around)), (min(h, 0.03) / 2, round(1.5 * around)))
+
+
+def _load() -> str:
+    return f"{os.getloadavg()[0]:.1f}"
+
+
+def convergence_rows(model, n: int = 2, meshes=CONVERGENCE, done: list[dict] = (), solver: str = "revolution") -> list[dict]:
+    """Mesh convergence of the free-field Delta L_W of (n,0,a) (unit lateral force): ``meshes`` = (element
+    size along the outline, vertices around or None for the lambda/6 rule); meshes in ``done`` (rows of
+    an earlier run, same solver) are kept, not recomputed."""
     from postprocess.force_radiation import harmonic_power
     from solvers import bem
 
     i = [j for j in range(len(model.f_r)) if model.n[j] == n and model.m[j] == 0 and model.cls[j] == "a"][0]
     f = float(model.f_r[i])
     W_s = float(harmonic_power(model, f, 1.0, 0.0)[list(model.harmonics).index(n), 0])
-    rows = list(done)
-    have = {(round(float(r["ds_max"]), 4), int(float(r["n_phi"]))) for r in rows}
-    for ds, n_phi in CONVERGENCE:
-        n_around = n_phi or len(wheel_mesh(model, n, f, ds)[2]) // len(wheel_mesh(model, n, f, ds)[3])
-        if (round(ds, 4), n_around) in have:
+    rows = []
+    have = {(r["mode"], round(float(r["ds_max"]), 4), int(float(r["n_phi"])), r["solver"]) for r in done}
+    for ds, n_phi in meshes:
+        V, _, _, loop, _ = wheel_mesh(model, n, f, ds, n_phi)
+        n_around = len(V) // len(loop)
+        if (f"({n},0,a)", round(ds, 4), n_around, solver) in have:
             continue
-        free, _, nv, t_free, _ = _powers(model, n, f, [(1.0, 0.0)], ds, None, n_phi)
-        rows.append({"mode": f"({n},0,a)", "ds_max": ds, "n_phi": n_around, "vertices": nv,
-                     "dL_free": bem.level(free[0]) - bem.level(W_s), "wall_s": t_free})
+        free, _, nv, t_free, _ = _powers(model, n, f, [(1.0, 0.0)], ds, None, n_phi, solver)
+        rows.append({"mode": f"({n},0,a)", "ds_max": ds, "n_phi": n_around, "vertices": nv, "solver": solver,
+                     "dL_free": bem.level(free[0]) - bem.level(W_s), "wall_s": t_free, "load": _load()})
         log.info("%s", rows[-1])
     return rows
 
 
-def default_case_row(model, ds_max: float, ground: float | None) -> dict:
+def default_case_row(model, ds_max: float, ground: float | None, solver: str = "revolution") -> dict:
     """The default case's L_W (its simulate.npz's final stretch, the radiation stage's
     ``sound_power_of_forces``) with the loudest tone's dominant harmonic replaced by the BEM's power of
     that harmonic under the tone's forces."""
@@ -141,89 +179,142 @@ def default_case_row(model, ds_max: float, ground: float | None) -> dict:
     n = int(s["harmonics"][h])
     ti = int(np.argmin(np.abs(d.tone_f - s["f"][j])))
     free, gr, nv, t_free, t_gr = _powers(model, n, float(d.tone_f[ti]), [(d.tone_F2[ti], d.tone_F3[ti])], ds_max,
-                                         ground)
+                                         ground, None, solver)
     W0, Wh = s["W_total"], float(s["W_n"][h, j])
     return {"mode": f"default case: tone {d.tone_f[ti]:.2f} Hz, n = {n}", "f_hz": float(d.tone_f[ti]),
-            "force": "limit cycle", "vertices": nv, "L_W_simple": bem.level(W0),
+            "force": "limit cycle", "vertices": nv, "solver": solver, "L_W_simple": bem.level(W0),
             "L_W_bem_free": bem.level(W0 - Wh + free[0]),
             "L_W_bem_ground": bem.level(W0 - Wh + gr[0]) if np.isfinite(gr[0]) else np.nan,
             "dL_free": bem.level(W0 - Wh + free[0]) - bem.level(W0),
             "dL_ground": bem.level(W0 - Wh + gr[0]) - bem.level(W0) if np.isfinite(gr[0]) else np.nan,
-            "wall_free_s": t_free, "wall_ground_s": t_gr}
+            "wall_free_s": t_free, "wall_ground_s": t_gr, "load": _load()}
 
 
-def write(rows: list[dict], ground: float | None, ds_max: float) -> None:
-    from .atomic import atomic_write
-
-    out = paths.build() / "studies" / "bem"
-    out.mkdir(parents=True, exist_ok=True)
-    if (out / "wheel.csv").exists():          # rows of earlier runs (other modes) stay
-        with open(out / "wheel.csv", newline="") as fh:
-            old = [{k: (v if k in ("mode", "force") else float(v)) for k, v in r.items()} for r in csv.DictReader(fh)]
-        new = {(r["mode"], r["force"]) for r in rows}
-        rows = sorted([r for r in old if (r["mode"], r["force"]) not in new] + rows,
-                      key=lambda r: (r["mode"].startswith("default"), r["mode"], r["force"]))
-    if not rows:
-        raise SystemExit("no rows: run `python -m pipeline.bem_check` first")
-    with atomic_write(out / "wheel.csv") as tmp, open(tmp, "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
-    lines = ["| mode | f (Hz) | force | vertices (wheel) | L_W simple (dB) | BEM free | BEM + ground | "
-             "Delta free (dB) | Delta ground (dB) | wall free / ground (s) |", "|" + "---|" * 10]
-    for r in rows:
-        lines.append(f"| {r['mode']} | {r['f_hz']:.1f} | {r['force']} | {int(r['vertices'])} | {r['L_W_simple']:.1f} | "
-                     f"{r['L_W_bem_free']:.1f} | {r['L_W_bem_ground']:.1f} | {r['dL_free']:+.1f} | "
-                     f"{r['dL_ground']:+.1f} | {r['wall_free_s']:.0f} / {r['wall_ground_s']:.0f} |")
-    table = "\n".join(lines)
-    modes_ = [r for r in rows if not r["mode"].startswith("default")]
+def _summary(rows: list[dict]) -> str:
+    """What the table says, from its numbers: the range of Delta per field, its sign against the
+    reference's finding, and whether lateral and radial forces agree."""
+    modes_ = [r for r in rows if not r["mode"].startswith("default") and np.isfinite(r["dL_free"])]
+    if not modes_:
+        return ""
     dfree = [r["dL_free"] for r in modes_]
     dgr = [r["dL_ground"] for r in modes_ if np.isfinite(r["dL_ground"])]
-    summary = (f"Delta L_W per (n,0,a) mode and unit force: free field {min(dfree):+.1f} to {max(dfree):+.1f} dB"
-               + (f", over the ground {min(dgr):+.1f} to {max(dgr):+.1f} dB" if dgr else "")
-               + f". In free field the simple model is within {max(abs(d) for d in dfree):.1f} dB of the BEM and "
-               + ("higher, as the reference's was (0.5 to 4 dB)" if max(dfree) < 0 else
-                  "not systematically higher as the reference's was (it found the simple model 0.5 to 4 dB above)")
-               + "; the ground's reflection adds the difference between the two Delta columns (the radiation "
-               "stage has no ground). Lateral and radial forces give the same Delta at the eigenfrequency, where "
-               "the (n,0,a) mode dominates the velocity field whichever force drives it." if modes_ else "")
+    pairs = {}
+    for r in modes_:
+        pairs.setdefault(r["mode"], []).append(r["dL_free"])
+    split = max(max(v) - min(v) for v in pairs.values())
+    below = sorted({r["mode"] for r in modes_ if r["dL_free"] <= -0.5})
+    return (f"Delta L_W per (n,0,a) mode and unit force: free field {min(dfree):+.1f} to {max(dfree):+.1f} dB"
+            + (f", over the ground {min(dgr):+.1f} to {max(dgr):+.1f} dB" if dgr else "")
+            + f". The simple model is within {max(abs(d) for d in dfree):.1f} dB of the free-field BEM; it is "
+            + (f"0.5 dB or more above it (the reference's direction) for {', '.join(below)}" if below else
+               "nowhere 0.5 dB or more above it")
+            + " (the reference found the simple model 0.5 to 4 dB above its BEM, which had a reflecting ground; "
+            "the radiation stage has no ground, so the Delta ground column includes the ground's reflection). "
+            f"Lateral and radial forces give the same Delta to {split:.2f} dB at the eigenfrequency, where the "
+            "(n,0,a) mode dominates the velocity field whichever force drives it.")
+
+
+def fragment_text(wheel: list[dict], conv: list[dict], ds_max: float, plan=()) -> str:
+    """docs/validation/72_bem_wheel.md from the cached rows."""
+    from solvers.constants import F_MAX_HZ
+
+    from . import bem_table as bt
+
+    both = {}
+    for r in wheel:
+        both.setdefault((r["mode"], r["force"]), {})[r["solver"]] = r["L_W_bem_free"]
+    agree = [abs(v[bt.SOLVER_3D] - v[bt.SOLVER_REV]) for v in both.values() if len(v) == 2]
+    agree_text = (f" On the rows computed both ways the two solvers' free-field levels differ by at most "
+                  f"{max(agree):.2f} dB (the earlier 3-D rows are stored as printed, to 0.1 dB)." if agree else "")
+    status = ""
+    if plan:
+        done = {}
+        for r in wheel:
+            d = done.setdefault(r["mode"], [False, False])
+            d[0] |= bool(np.isfinite(r["dL_free"]))
+            d[1] |= bool(np.isfinite(r["dL_ground"]))
+        status = ("\n\nThe radiation stage's (n,0,a) modes with n >= 2 (up to its f_max, "
+                  f"{F_MAX_HZ:.0f} Hz), their lambda/6 meshes and what is in the table above (the 3-D solve's "
+                  "dense matrices need 16 N^2 bytes each, four times that with the image wheel; the revolution "
+                  "solver's free field needs 1/(vertices around) of that, its ground one N x N cross block and "
+                  "the wheel's own N x N matrix):\n\n"
+                  "| mode | f (Hz) | vertices (along x around) | one dense 3-D matrix (GB) | free field | ground |\n"
+                  "|---|---|---|---|---|---|\n"
+                  + "\n".join(f"| {p['mode']} | {p['f_hz']:.0f} | {p['vertices']} ({p['along']} x {p['around']}) | "
+                              f"{p['dense_gb']:.1f} | {'done' if done.get(p['mode'], [0, 0])[0] else 'not done'} | "
+                              f"{'done' if done.get(p['mode'], [0, 0])[1] else 'not done'} |" for p in plan)
+                  + ("\n\n" + NOT_DONE if NOT_DONE else ""))
     text = f"""## The radiation stage against a boundary-element solution: the wheel (issue 28)
 
 Script: `python -m pipeline.bem_check` (bempp-cl, Burton-Miller, P1; checked on the spheres above).
 The default case's wheel: the FE section's outline revolved (element size <= lambda/6 around, <= min(lambda/6,
 {ds_max * 1e3:.0f} mm) along the outline, corners kept), the outward normal velocity of harmonic n for a unit RMS
 lateral or radial force at the contact point at the (n,0,a) eigenfrequency, from the radiation stage's modal
-velocities; bore clamped (zero velocity). Ground: rigid, {'' if ground is None else f'{ground * 1e3:.0f} mm'} below
-the contact point (an image wheel; the wheel's axis horizontal, the contact at the bottom). Delta = L_W(BEM) -
-L_W(radiation stage) for harmonic n. The reference (thesis sec. 5.1) found 0.5 to 4 dB with the simple model
-higher, i.e. Delta between -4 and -0.5 dB. Wall times on a shared 2-core machine (load 4-10 during these runs), numba backend,
-including bempp's compilation in the first row.
+velocities; bore clamped (zero velocity). Ground: rigid, {GROUND_BELOW_CONTACT * 1e3:.0f} mm below the contact
+point (an image wheel; the wheel's axis horizontal, the contact at the bottom). Delta = L_W(BEM) - L_W(radiation
+stage) for harmonic n. The reference (thesis sec. 5.1) found 0.5 to 4 dB with the simple model higher, i.e. Delta
+between -4 and -0.5 dB.
 
-{table}
+Two solvers of the same discrete problem. `3-D` (`solvers.bem.radiated_power`): the whole mesh, dense
+(assembly and memory grow with the square of the vertices N; the ground by the wheel and its image, 2N
+unknowns). `revolution` (`solvers.bem_revolution`): the mesh is rotated copies of one ring of vertices, so
+its Galerkin matrices are block-circulant; bempp-cl assembles only the first block row (ring 0's test
+functions against the whole mesh: 1/(vertices around) of the 3-D assembly) and the problem splits into one
+ring-sized problem per harmonic +-n; over the ground, by the mirror symmetry of wheel and image, the
+unknowns are the wheel's: its own matrix (rebuilt from the first block row) plus the image's cross block
+(N x N, bempp-cl, no singular integrals). `tests/radiation/test_bem_revolution.py` asserts that both give
+the same power to 1e-8 in free field (harmonics 0-3) and to 1e-4 over a ground (the 3-D pair is mirror-symmetric only to bempp's quadrature).{agree_text} Wall times: one
+thread (`OMP_NUM_THREADS=1 NUMBA_NUM_THREADS=1`, `nice -n 5`) on a shared 2-core machine, including
+bempp's numba compilation (about 1-2 min per process); load = the 1-min load average at the end of the
+solve ("4-10": the first rows' runs, as stated then).
 
-{summary}
+{bt.wheel_table(wheel)}
+
+{_summary(wheel)}{status}
 """
-    conv = ""
-    if (out / "convergence.csv").exists():
-        with open(out / "convergence.csv", newline="") as fh:
-            cr = list(csv.DictReader(fh))
-        conv = ("Mesh convergence of (2,0,a), unit lateral force, free field (`--convergence`):\n\n"
-                "| element size along the outline (mm) | vertices around | vertices | Delta free (dB) | wall (s) |\n"
-                "|---|---|---|---|---|\n" + "\n".join(
-                    f"| {1e3 * float(r['ds_max']):.0f} | {r['n_phi']} | {r['vertices']} | {float(r['dL_free']):+.2f} | "
-                    f"{float(r['wall_s']):.0f} |" for r in cr) + "\n")
-        d = [float(r["dL_free"]) for r in cr]
-        fine = max(cr, key=lambda r: int(float(r["vertices"])))
-        coarse = min(cr, key=lambda r: int(float(r["vertices"])))
-        conv += (f"\nDelta moves by {max(d) - min(d):.2f} dB over these meshes, to {float(fine['dL_free']):+.2f} dB on the "
-                 f"finest ({fine['vertices']} vertices): the mode's radiation is a near-field cancellation between the "
-                 f"faces and needs both directions resolved; the per-mode table above (coarsest meshes, the "
-                 f"lambda/6 rule) is uncertain by that much"
-                 + (", and the refinement moves the BEM further ABOVE the simple model for (2,0,a), away from the "
-                    "reference's finding.\n" if float(fine["dL_free"]) > float(coarse["dL_free"]) else ".\n"))
-        text += "\n" + conv
-    with atomic_write(ROOT / "docs" / "validation" / "72_bem_wheel.md") as tmp:
+    if conv:
+        text += ("\nMesh convergence, unit lateral force, free field (`--convergence N`):\n\n" + bt.conv_table(conv)
+                 + "\n\n" + bt.conv_summary(conv) + " The per-mode table above (the lambda/6 rule) is "
+                 "uncertain by about these spans.\n")
+    return text
+
+
+NOT_DONE = ""
+
+
+def write(rows: list[dict], ground: float | None, ds_max: float, conv_rows: list[dict] = (), plan=()) -> None:
+    """Merge ``rows`` / ``conv_rows`` into the CSV cache (seeded from the fragment) and rewrite the
+    fragment from the whole cache."""
+    from . import bem_table as bt
+    from .atomic import atomic_write
+
+    out = paths.build() / "studies" / "bem"
+    frag = ROOT / "docs" / "validation" / "72_bem_wheel.md"
+    wheel, conv = bt.cached(out, frag)
+    wheel, conv = bt.merge_wheel(wheel, list(rows)), bt.merge_conv(conv, list(conv_rows))
+    if not wheel:
+        raise SystemExit("no rows: run `python -m pipeline.bem_check` first")
+    bt.write_csv(out / "wheel.csv", wheel, bt.WHEEL_KEYS)
+    if conv:
+        bt.write_csv(out / "convergence.csv", conv, bt.CONV_KEYS)
+    text = fragment_text(wheel, conv, ds_max, plan)
+    with atomic_write(frag) as tmp:
         tmp.write_text(text)
+
+
+def plan_rows(model, ds_max: float) -> list[dict]:
+    """Every (n,0,a) mode in the radiation stage's range: frequency, the lambda/6 mesh (vertices, along
+    x around) and the memory of one dense complex matrix of the 3-D solve (free field; 4x with the
+    image wheel)."""
+    rows = []
+    for j in np.argsort(model.f_r):
+        if model.m[j] != 0 or model.cls[j] != "a" or int(model.n[j]) < 2:
+            continue
+        n, f = int(model.n[j]), float(model.f_r[j])
+        V, _, _, loop, _ = wheel_mesh(model, n, f, ds_max)
+        rows.append({"mode": f"({n},0,a)", "f_hz": f, "vertices": len(V), "along": len(loop),
+                     "around": len(V) // len(loop), "dense_gb": 16 * len(V) ** 2 / 1e9})
+    return rows
 
 
 def main(argv=None) -> int:
@@ -233,32 +324,36 @@ def main(argv=None) -> int:
     ap.add_argument("--modes", type=int, nargs="*", default=[2, 3], help="harmonics n of the (n,0,a) modes")
     ap.add_argument("--ds-max", type=float, default=0.03, help="largest element size along the outline (m)")
     ap.add_argument("--no-ground", action="store_true", help="free field only")
+    ap.add_argument("--solver", choices=("revolution", "3-D"), default="revolution",
+                    help="revolution: the symmetric solver (default); 3-D: the whole mesh")
+    ap.add_argument("--ground-order", type=int, default=None,
+                    help="quadrature order of the image wheel's (non-singular) cross block (default bempp's 4)")
     ap.add_argument("--default-case", action="store_true", help="also the default case's limit cycle")
-    ap.add_argument("--convergence", action="store_true", help="only the mesh convergence of (2,0,a) (free field)")
-    ap.add_argument("--from-csv", action="store_true", help="only rewrite the fragment from build/studies/bem/wheel.csv")
+    ap.add_argument("--convergence", type=int, nargs="*", default=None,
+                    help="only the mesh convergence of these (n,0,a) modes (free field; none given: 2)")
+    ap.add_argument("--from-csv", action="store_true", help="only rewrite the fragment from build/studies/bem/*.csv")
     a = ap.parse_args(argv)
     logging.basicConfig(level=logging.INFO, format="%(levelname)s %(name)s: %(message)s")
     ground = None if a.no_ground else GROUND_BELOW_CONTACT
-    if a.from_csv:
-        write([], ground, a.ds_max)
-        return 0
-    if a.convergence:
-        from .study.limit_cycle import save_csv
-
-        path = paths.build() / "studies" / "bem" / "convergence.csv"
-        done = []
-        if path.exists():
-            with open(path, newline="") as fh:
-                done = list(csv.DictReader(fh))
-        save_csv(path, convergence_rows(load_radiation_model("default"), done=done))
-        write([], ground, a.ds_max)
-        return 0
     model = load_radiation_model("default")
-    rows = wheel_rows(model, a.modes, a.ds_max, ground)
+    if a.from_csv:
+        write([], ground, a.ds_max, plan=plan_rows(model, a.ds_max))
+        return 0
+    if a.convergence is not None:
+        from . import bem_table as bt
+
+        done = bt.cached(paths.build() / "studies" / "bem", ROOT / "docs" / "validation" / "72_bem_wheel.md")[1]
+        for n in a.convergence or [2]:
+            rows = convergence_rows(model, n, convergence_meshes(model, n), done, a.solver)
+            write([], ground, a.ds_max, rows, plan_rows(model, a.ds_max))
+        return 0
+    plan = plan_rows(model, a.ds_max)
+    rows = wheel_rows(model, a.modes, a.ds_max, ground, a.solver, a.ground_order,
+                      on_row=lambda r: write(r, ground, a.ds_max, plan=plan))
     if a.default_case:
-        rows.append(default_case_row(model, a.ds_max, ground))
+        rows.append(default_case_row(model, a.ds_max, ground, a.solver))
         log.info("%s", rows[-1])
-    write(rows, ground, a.ds_max)
+        write(rows[-1:], ground, a.ds_max, plan=plan)
     return 0
 
 

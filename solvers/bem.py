@@ -49,29 +49,35 @@ def mirrored(vertices: np.ndarray, triangles: np.ndarray, axis: int = 2, plane: 
     return np.vstack([v, vi]), np.vstack([t, t[:, ::-1] + len(v)])
 
 
+def _weak_forms(grid, k: float, test=None):
+    """Galerkin matrices of the Burton-Miller equation on ``grid`` (P1 trial functions, test functions
+    ``test``: P1 on the whole grid by default): dense left-hand side A, right-hand side B (acting on
+    q = dp/dn) and the sparse mass matrix M, rows = the test space's dofs."""
+    api = _api()
+    space = api.function_space(grid, "P", 1)
+    test = space if test is None else test
+    hz = api.operators.boundary.helmholtz
+    ident = api.operators.boundary.sparse.identity(space, space, test)
+    V = hz.single_layer(space, space, test, k)
+    K = hz.double_layer(space, space, test, k)
+    Kp = hz.adjoint_double_layer(space, space, test, k)
+    W = hz.hypersingular(space, space, test, k)
+    eta = 1j / k
+    A = np.asarray((0.5 * ident - K + eta * W).weak_form().A)
+    B = np.asarray((V + eta * (0.5 * ident + Kp)).weak_form().A)
+    return A, B, ident.weak_form().A
+
+
 def radiated_power(grid, k: float, vns, rho: float = 1.21, c: float = 343.0) -> list[float]:
     """Radiated power [W] of the body ``grid`` vibrating with each outward normal velocity amplitude
     field of ``vns`` (complex, per vertex (P1 coefficients), m/s) at wavenumber k [1/m]: the
     Burton-Miller equation above (operators assembled once for all fields), solved by dense LU."""
-    api = _api()
-    space = api.function_space(grid, "P", 1)
-    omega = k * c
-    hz = api.operators.boundary.helmholtz
-    ident = api.operators.boundary.sparse.identity(space, space, space)
-    V = hz.single_layer(space, space, space, k)
-    K = hz.double_layer(space, space, space, k)
-    Kp = hz.adjoint_double_layer(space, space, space, k)
-    W = hz.hypersingular(space, space, space, k)
-    eta = 1j / k
-    # Galerkin (P1 test functions): dense LU of the left-hand side's weak form, one solve per field
-    A = np.asarray((0.5 * ident - K + eta * W).weak_form().A)
-    B = np.asarray((V + eta * (0.5 * ident + Kp)).weak_form().A)
-    M = ident.weak_form().A
+    A, B, M = _weak_forms(grid, k)
     lu = lu_factor(A)
     out = []
     for vn in vns:
         vn = np.asarray(vn, complex)
-        p = lu_solve(lu, -(B @ (1j * omega * rho * vn)))
+        p = lu_solve(lu, -(B @ (1j * k * c * rho * vn)))
         out.append(0.5 * float(np.real(np.conj(vn) @ (M @ p))))
     return out
 
