@@ -1,23 +1,26 @@
 """The radiation stage against a boundary-element solution (issue 28; thesis sec. 5.1).
 
-    .venv/bin/python -m pipeline.bem_check [--modes 2 3] [--no-ground]
+    .venv/bin/python -m pipeline.bem_check [--modes 2 3] [--no-ground] [--solver revolution|3-D]
+        [--ground-order Q] [--default-case] [--convergence N ...] [--from-csv]
 
 For the default case's wheel (its radiation model, ``pipeline.radiate_stage.load_radiation_model``)
 and each (n,0,a) mode asked for: the section's outline revolved into a triangle mesh (element size
 <= lambda/6 around and along the outline, ``--ds-max`` at most along it; bore clamped: its
 velocity is the shapes' zero), the outward normal velocity of harmonic n for a unit (RMS) lateral
 and radial force at the contact point at the mode's eigenfrequency (``postprocess.wheel_bem``, the
-radiation stage's modal velocities), the exterior Helmholtz problem solved by bempp-cl
-(``solvers.bem``: Burton-Miller, P1), free field and over a rigid ground (an image wheel in the plane
-``--ground`` m below the contact point, the wheel's axis horizontal); the radiation stage's W_n at the
-same frequency and force beside it.  Writes docs/validation/72_bem_wheel.md and
-build/studies/bem/wheel.csv.  Cost: bempp's numba kernels compile once per process (~1-2 min per
-operator on a loaded machine); assembly grows with the square of the vertices.
+radiation stage's modal velocities), the exterior Helmholtz problem solved by bempp-cl (Burton-Miller,
+P1; ``solvers.bem_revolution`` by the mesh's rotational symmetry, or ``solvers.bem`` on the whole
+mesh), free field and over a rigid ground (an image wheel in the plane ``GROUND_BELOW_CONTACT`` below
+the contact point, the wheel's axis horizontal); the radiation stage's W_n at the same frequency and
+force beside it.  Each mode's rows are added to build/studies/bem/wheel.csv as they come
+(``pipeline.bem_table``: earlier rows kept, seeded from the fragment) and docs/validation/72_bem_wheel.md
+is rewritten from all of them.  Cost: bempp's numba kernels compile once per process (~1-2 min on a
+loaded machine); the 3-D assembly grows with the square of the vertices, the revolution solver's free
+field with (vertices along the outline) x (vertices), its ground with the square of the vertices.
 """
 from __future__ import annotations
 
 import argparse
-import csv
 import logging
 import math
 import os
@@ -27,10 +30,10 @@ from pathlib import Path
 import numpy as np
 
 from . import paths
+from .bem_table import GROUND_BELOW_CONTACT
 
 log = logging.getLogger("pipeline.bem_check")
 ROOT = Path(__file__).resolve().parents[1]
-GROUND_BELOW_CONTACT = 0.16      # m: a rigid ground at about the BV50's foot (153 mm rail height + pad)
 
 
 def wheel_mesh(model, n: int, f: float, ds_max: float, n_phi: int | None = None):
@@ -65,7 +68,8 @@ def wheel_rows(model, harmonics, ds_max: float, ground: float | None, solver: st
         for d, (F2, F3) in enumerate(forces):
             W_s = float(harmonic_power(model, f, F2, F3)[h, 0])
             rows.append({"mode": f"({n},0,a)", "f_hz": f, "force": ("lateral", "radial")[d], "vertices": nv,
-                         "solver": solver, "L_W_simple": bem.level(W_s), "L_W_bem_free": bem.level(free[d]),
+                         "solver": solver_label(solver, ground_order if ground is not None else None),
+                         "L_W_simple": bem.level(W_s), "L_W_bem_free": bem.level(free[d]),
                          "L_W_bem_ground": bem.level(gr[d]) if np.isfinite(gr[d]) else np.nan,
                          "dL_free": bem.level(free[d]) - bem.level(W_s),
                          "dL_ground": bem.level(gr[d]) - bem.level(W_s) if np.isfinite(gr[d]) else np.nan,
@@ -133,6 +137,11 @@ def convergence_meshes(model, n: int):
     return ((0.03, None), (min(h, 0.03) / 2, None), (0.03, round(1.5 * around)), (min(h, 0.03) / 2, round(1.5 * around)))
 
 
+def solver_label(solver: str, ground_order: int | None) -> str:
+    """The table's solver column: the solver, and the cross block's quadrature order if not bempp's."""
+    return solver if ground_order is None else f"{solver}, ground q{ground_order}"
+
+
 def _load() -> str:
     return f"{os.getloadavg()[0]:.1f}"
 
@@ -190,98 +199,6 @@ def default_case_row(model, ds_max: float, ground: float | None, solver: str = "
             "wall_free_s": t_free, "wall_ground_s": t_gr, "load": _load()}
 
 
-def _summary(rows: list[dict]) -> str:
-    """What the table says, from its numbers: the range of Delta per field, its sign against the
-    reference's finding, and whether lateral and radial forces agree."""
-    modes_ = [r for r in rows if not r["mode"].startswith("default") and np.isfinite(r["dL_free"])]
-    if not modes_:
-        return ""
-    dfree = [r["dL_free"] for r in modes_]
-    dgr = [r["dL_ground"] for r in modes_ if np.isfinite(r["dL_ground"])]
-    pairs = {}
-    for r in modes_:
-        pairs.setdefault(r["mode"], []).append(r["dL_free"])
-    split = max(max(v) - min(v) for v in pairs.values())
-    below = sorted({r["mode"] for r in modes_ if r["dL_free"] <= -0.5})
-    return (f"Delta L_W per (n,0,a) mode and unit force: free field {min(dfree):+.1f} to {max(dfree):+.1f} dB"
-            + (f", over the ground {min(dgr):+.1f} to {max(dgr):+.1f} dB" if dgr else "")
-            + f". The simple model is within {max(abs(d) for d in dfree):.1f} dB of the free-field BEM; it is "
-            + (f"0.5 dB or more above it (the reference's direction) for {', '.join(below)}" if below else
-               "nowhere 0.5 dB or more above it")
-            + " (the reference found the simple model 0.5 to 4 dB above its BEM, which had a reflecting ground; "
-            "the radiation stage has no ground, so the Delta ground column includes the ground's reflection). "
-            f"Lateral and radial forces give the same Delta to {split:.2f} dB at the eigenfrequency, where the "
-            "(n,0,a) mode dominates the velocity field whichever force drives it.")
-
-
-def fragment_text(wheel: list[dict], conv: list[dict], ds_max: float, plan=()) -> str:
-    """docs/validation/72_bem_wheel.md from the cached rows."""
-    from solvers.constants import F_MAX_HZ
-
-    from . import bem_table as bt
-
-    both = {}
-    for r in wheel:
-        both.setdefault((r["mode"], r["force"]), {})[r["solver"]] = r["L_W_bem_free"]
-    agree = [abs(v[bt.SOLVER_3D] - v[bt.SOLVER_REV]) for v in both.values() if len(v) == 2]
-    agree_text = (f" On the rows computed both ways the two solvers' free-field levels differ by at most "
-                  f"{max(agree):.2f} dB (the earlier 3-D rows are stored as printed, to 0.1 dB)." if agree else "")
-    status = ""
-    if plan:
-        done = {}
-        for r in wheel:
-            d = done.setdefault(r["mode"], [False, False])
-            d[0] |= bool(np.isfinite(r["dL_free"]))
-            d[1] |= bool(np.isfinite(r["dL_ground"]))
-        status = ("\n\nThe radiation stage's (n,0,a) modes with n >= 2 (up to its f_max, "
-                  f"{F_MAX_HZ:.0f} Hz), their lambda/6 meshes and what is in the table above (the 3-D solve's "
-                  "dense matrices need 16 N^2 bytes each, four times that with the image wheel; the revolution "
-                  "solver's free field needs 1/(vertices around) of that, its ground one N x N cross block and "
-                  "the wheel's own N x N matrix):\n\n"
-                  "| mode | f (Hz) | vertices (along x around) | one dense 3-D matrix (GB) | free field | ground |\n"
-                  "|---|---|---|---|---|---|\n"
-                  + "\n".join(f"| {p['mode']} | {p['f_hz']:.0f} | {p['vertices']} ({p['along']} x {p['around']}) | "
-                              f"{p['dense_gb']:.1f} | {'done' if done.get(p['mode'], [0, 0])[0] else 'not done'} | "
-                              f"{'done' if done.get(p['mode'], [0, 0])[1] else 'not done'} |" for p in plan)
-                  + ("\n\n" + NOT_DONE if NOT_DONE else ""))
-    text = f"""## The radiation stage against a boundary-element solution: the wheel (issue 28)
-
-Script: `python -m pipeline.bem_check` (bempp-cl, Burton-Miller, P1; checked on the spheres above).
-The default case's wheel: the FE section's outline revolved (element size <= lambda/6 around, <= min(lambda/6,
-{ds_max * 1e3:.0f} mm) along the outline, corners kept), the outward normal velocity of harmonic n for a unit RMS
-lateral or radial force at the contact point at the (n,0,a) eigenfrequency, from the radiation stage's modal
-velocities; bore clamped (zero velocity). Ground: rigid, {GROUND_BELOW_CONTACT * 1e3:.0f} mm below the contact
-point (an image wheel; the wheel's axis horizontal, the contact at the bottom). Delta = L_W(BEM) - L_W(radiation
-stage) for harmonic n. The reference (thesis sec. 5.1) found 0.5 to 4 dB with the simple model higher, i.e. Delta
-between -4 and -0.5 dB.
-
-Two solvers of the same discrete problem. `3-D` (`solvers.bem.radiated_power`): the whole mesh, dense
-(assembly and memory grow with the square of the vertices N; the ground by the wheel and its image, 2N
-unknowns). `revolution` (`solvers.bem_revolution`): the mesh is rotated copies of one ring of vertices, so
-its Galerkin matrices are block-circulant; bempp-cl assembles only the first block row (ring 0's test
-functions against the whole mesh: 1/(vertices around) of the 3-D assembly) and the problem splits into one
-ring-sized problem per harmonic +-n; over the ground, by the mirror symmetry of wheel and image, the
-unknowns are the wheel's: its own matrix (rebuilt from the first block row) plus the image's cross block
-(N x N, bempp-cl, no singular integrals). `tests/radiation/test_bem_revolution.py` asserts that both give
-the same power to 1e-8 in free field (harmonics 0-3) and to 1e-4 over a ground (the 3-D pair is mirror-symmetric only to bempp's quadrature).{agree_text} Wall times: one
-thread (`OMP_NUM_THREADS=1 NUMBA_NUM_THREADS=1`, `nice -n 5`) on a shared 2-core machine, including
-bempp's numba compilation (about 1-2 min per process); load = the 1-min load average at the end of the
-solve ("4-10": the first rows' runs, as stated then).
-
-{bt.wheel_table(wheel)}
-
-{_summary(wheel)}{status}
-"""
-    if conv:
-        text += ("\nMesh convergence, unit lateral force, free field (`--convergence N`):\n\n" + bt.conv_table(conv)
-                 + "\n\n" + bt.conv_summary(conv) + " The per-mode table above (the lambda/6 rule) is "
-                 "uncertain by about these spans.\n")
-    return text
-
-
-NOT_DONE = ""
-
-
 def write(rows: list[dict], ground: float | None, ds_max: float, conv_rows: list[dict] = (), plan=()) -> None:
     """Merge ``rows`` / ``conv_rows`` into the CSV cache (seeded from the fragment) and rewrite the
     fragment from the whole cache."""
@@ -297,7 +214,7 @@ def write(rows: list[dict], ground: float | None, ds_max: float, conv_rows: list
     bt.write_csv(out / "wheel.csv", wheel, bt.WHEEL_KEYS)
     if conv:
         bt.write_csv(out / "convergence.csv", conv, bt.CONV_KEYS)
-    text = fragment_text(wheel, conv, ds_max, plan)
+    text = bt.fragment_text(wheel, conv, ds_max, plan)
     with atomic_write(frag) as tmp:
         tmp.write_text(text)
 

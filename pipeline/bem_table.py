@@ -10,10 +10,13 @@ import csv
 import math
 from pathlib import Path
 
+import numpy as np
+
 WHEEL_KEYS = ("mode", "f_hz", "force", "vertices", "solver", "L_W_simple", "L_W_bem_free", "L_W_bem_ground",
               "dL_free", "dL_ground", "wall_free_s", "wall_ground_s", "load")
 CONV_KEYS = ("mode", "ds_max", "n_phi", "vertices", "solver", "dL_free", "wall_s", "load")
 TEXT_KEYS = ("mode", "force", "solver", "load")
+GROUND_BELOW_CONTACT = 0.16      # m: a rigid ground at about the BV50's foot (153 mm rail height + pad)
 SOLVER_3D = "3-D"                 # solvers.bem.radiated_power: the whole mesh (image wheel for the ground)
 SOLVER_REV = "revolution"         # solvers.bem_revolution: first block row per harmonic; ground by mirror symmetry
 
@@ -184,3 +187,119 @@ def conv_summary(rows: list[dict]) -> str:
                    f"on the finest ({int(float(fine['vertices']))}): refinement moves the BEM "
                    f"{'up' if move > 0 else 'down'} by {abs(move):.2f} dB.")
     return " ".join(out)
+
+
+def _summary(rows: list[dict]) -> str:
+    """What the table says, from its numbers: the range of Delta per field, its sign against the
+    reference's finding, and whether lateral and radial forces agree."""
+    modes_ = [r for r in rows if not r["mode"].startswith("default") and np.isfinite(r["dL_free"])]
+    if not modes_:
+        return ""
+    dfree = [r["dL_free"] for r in modes_]
+    dgr = [r["dL_ground"] for r in modes_ if np.isfinite(r["dL_ground"])]
+    pairs = {}
+    for r in modes_:
+        pairs.setdefault(r["mode"], []).append(r["dL_free"])
+    split = max(max(v) - min(v) for v in pairs.values())
+    below = sorted({r["mode"] for r in modes_ if r["dL_free"] <= -0.5})
+    return (f"Delta L_W per (n,0,a) mode and unit force: free field {min(dfree):+.1f} to {max(dfree):+.1f} dB"
+            + (f", over the ground {min(dgr):+.1f} to {max(dgr):+.1f} dB" if dgr else "")
+            + f". The simple model is within {max(abs(d) for d in dfree):.1f} dB of the free-field BEM; it is "
+            + (f"0.5 dB or more above it (the reference's direction) for {', '.join(below)}" if below else
+               "nowhere 0.5 dB or more above it")
+            + " (the reference found the simple model 0.5 to 4 dB above its BEM, which had a reflecting ground; "
+            "the radiation stage has no ground, so the Delta ground column includes the ground's reflection). "
+            f"Lateral and radial forces give the same Delta to {split:.2f} dB at the eigenfrequency, where the "
+            "(n,0,a) mode dominates the velocity field whichever force drives it.")
+
+
+def fragment_text(wheel: list[dict], conv: list[dict], ds_max: float, plan=()) -> str:
+    """docs/validation/72_bem_wheel.md from the cached rows."""
+    from solvers.constants import F_MAX_HZ
+
+    both = {}
+    for r in wheel:
+        both.setdefault((r["mode"], r["force"]), {})[r["solver"]] = r
+    agree = [max(abs(v[SOLVER_3D][c] - v[SOLVER_REV][c]) for c in ("L_W_bem_free", "L_W_bem_ground"))
+             for v in both.values() if SOLVER_3D in v and SOLVER_REV in v]
+    agree_text = (f" On the rows computed both ways the two solvers' levels (free and ground) differ by at most "
+                  f"{max(agree):.2f} dB (the earlier 3-D rows are stored as printed, to 0.1 dB)." if agree else "")
+    quad = {}
+    for (m, _), v in both.items():
+        for s_, r in v.items():
+            if ", ground q" in s_ and SOLVER_REV in v and np.isfinite(r["dL_ground"]):
+                d = abs(r["dL_ground"] - v[SOLVER_REV]["dL_ground"])
+                quad[(m, s_)] = max(quad.get((m, s_), 0.0), d)
+    quad = [(m, s_, d) for (m, s_), d in quad.items()]
+    if quad:
+        agree_text += (" A lower quadrature order of the image's cross block (its integrals are regular: the image "
+                       f"is at least {2 * GROUND_BELOW_CONTACT * 1e3:.0f} mm away) changes Delta ground by at most "
+                       + ", ".join(f"{d:.3f} dB ({m}, {s_.split(', ')[1]})" for m, s_, d in quad) + ".")
+    status = ""
+    if plan:
+        done = {}
+        for r in wheel:
+            d = done.setdefault(r["mode"], [False, False])
+            d[0] |= bool(np.isfinite(r["dL_free"]))
+            d[1] |= bool(np.isfinite(r["dL_ground"]))
+        status = ("\n\nThe radiation stage's (n,0,a) modes with n >= 2 (up to its f_max, "
+                  f"{F_MAX_HZ:.0f} Hz), their lambda/6 meshes and what is in the table above (the 3-D solve's "
+                  "dense matrices need 16 N^2 bytes each, four times that with the image wheel; the revolution "
+                  "solver's free field needs 1/(vertices around) of that, its ground one N x N cross block and "
+                  "the wheel's own N x N matrix):\n\n"
+                  "| mode | f (Hz) | vertices (along x around) | one dense 3-D matrix (GB) | free field | ground |\n"
+                  "|---|---|---|---|---|---|\n"
+                  + "\n".join(f"| {p['mode']} | {p['f_hz']:.0f} | {p['vertices']} ({p['along']} x {p['around']}) | "
+                              f"{p['dense_gb']:.1f} | {'done' if done.get(p['mode'], [0, 0])[0] else 'not done'} | "
+                              f"{'done' if done.get(p['mode'], [0, 0])[1] else 'not done'} |" for p in plan)
+                  + _cost_note(wheel, plan, done))
+    text = f"""## The radiation stage against a boundary-element solution: the wheel (issue 28)
+
+Script: `python -m pipeline.bem_check` (bempp-cl, Burton-Miller, P1; checked on the spheres above).
+The default case's wheel: the FE section's outline revolved (element size <= lambda/6 around, <= min(lambda/6,
+{ds_max * 1e3:.0f} mm) along the outline, corners kept), the outward normal velocity of harmonic n for a unit RMS
+lateral or radial force at the contact point at the (n,0,a) eigenfrequency, from the radiation stage's modal
+velocities; bore clamped (zero velocity). Ground: rigid, {GROUND_BELOW_CONTACT * 1e3:.0f} mm below the contact
+point (an image wheel; the wheel's axis horizontal, the contact at the bottom). Delta = L_W(BEM) - L_W(radiation
+stage) for harmonic n. The reference (thesis sec. 5.1) found 0.5 to 4 dB with the simple model higher, i.e. Delta
+between -4 and -0.5 dB.
+
+Two solvers of the same discrete problem. `3-D` (`solvers.bem.radiated_power`): the whole mesh, dense
+(assembly and memory grow with the square of the vertices N; the ground by the wheel and its image, 2N
+unknowns). `revolution` (`solvers.bem_revolution`): the mesh is rotated copies of one ring of vertices, so
+its Galerkin matrices are block-circulant; bempp-cl assembles only the first block row (ring 0's test
+functions against the whole mesh: 1/(vertices around) of the 3-D assembly) and the problem splits into one
+ring-sized problem per harmonic +-n; over the ground, by the mirror symmetry of wheel and image, the
+unknowns are the wheel's: its own matrix (rebuilt from the first block row) plus the image's cross block
+(N x N, bempp-cl, no singular integrals). `tests/radiation/test_bem_revolution.py` asserts that both give
+the same power to 1e-8 in free field (harmonics 0-3) and to 1e-4 over a ground (the 3-D pair is mirror-symmetric only to bempp's quadrature).{agree_text} Wall times: one
+thread (`OMP_NUM_THREADS=1 NUMBA_NUM_THREADS=1`, `nice -n 5`) on a shared 2-core machine, including
+bempp's numba compilation (about 1-2 min per process); load = the 1-min load average at the end of the
+solve ("4-10": the first rows' runs, as stated then).
+
+{wheel_table(wheel)}
+
+{_summary(wheel)}{status}
+"""
+    if conv:
+        text += ("\nMesh convergence, unit lateral force, free field (`--convergence N`):\n\n" + conv_table(conv)
+                 + "\n\n" + conv_summary(conv) + " The per-mode table above (the lambda/6 rule) is "
+                 "uncertain by about these spans.\n")
+    return text
+
+
+def _cost_note(wheel: list[dict], plan, done: dict) -> str:
+    """Why the grounds not done are not: their cost extrapolated from the measured ones (the revolution
+    solver's ground: the image's cross block, (2N)^2 triangle pairs; three dense N x N matrices)."""
+    meas = [(r["wall_ground_s"] / (2 * r["vertices"]) ** 2, r) for r in wheel
+            if r["solver"] == SOLVER_REV and np.isfinite(r["wall_ground_s"]) and r["vertices"] > 3000]
+    todo = [p for p in plan if not done.get(p["mode"], [0, 0])[1]]
+    if not meas or not todo:
+        return ""
+    rate, ref = max(meas, key=lambda m: m[1]["vertices"])
+    return ("\n\nThe grounds not done: the revolution solver's ground took "
+            f"{ref['wall_ground_s']:.0f} s for {ref['mode']} ({int(ref['vertices'])} vertices, load {ref['load']}), "
+            f"{rate * 1e6:.2f} us per pair of triangles of the image's cross block; at that rate "
+            + ", ".join(f"{p['mode']} would take {rate * (2 * p['vertices']) ** 2 / 60:.0f} min and "
+                        f"{3 * p['dense_gb']:.0f} GB" for p in todo)
+            + " (the machine has 23 GB, shared).")

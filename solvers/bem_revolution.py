@@ -95,15 +95,6 @@ def revolution_power(vertices, triangles, n_nodes: int, k: float, vns, n: int, r
     return out
 
 
-def _circulant(row: np.ndarray, n_nodes: int) -> np.ndarray:
-    """The full block-circulant matrix (N, N) from its first block row (n_nodes, N)."""
-    r = np.asarray(row).reshape(n_nodes, -1, n_nodes)
-    n_phi = r.shape[1]
-    j = np.arange(n_phi)
-    blocks = r[:, (j[None, :] - j[:, None]) % n_phi, :]                # (i, j, k, l) = row[i, k - j, l]
-    return blocks.transpose(1, 0, 2, 3).reshape(n_phi * n_nodes, n_phi * n_nodes)
-
-
 def cross_block(vertices, triangles, k: float, axis: int, plane: float, order: int | None = None):
     """A_12 and B_12 (N, N): the image body's (mirror in x_axis = plane) action on the body, test
     functions on the body, trial functions on the image (vertex order as the body's); ``order``: the
@@ -120,11 +111,22 @@ def cross_block(vertices, triangles, k: float, axis: int, plane: float, order: i
     image = api.function_space(grid, "P", 1, support_elements=np.arange(nt, 2 * nt), include_boundary_dofs=False)
     hz = api.operators.boundary.helmholtz
     eta = 1j / k
-    K = hz.double_layer(image, body, body, k, par).weak_form().A
-    W = hz.hypersingular(image, body, body, k, par).weak_form().A
-    V = hz.single_layer(image, body, body, k, par).weak_form().A
-    Kp = hz.adjoint_double_layer(image, body, body, k, par).weak_form().A
-    return np.asarray(-K + eta * W), np.asarray(V + eta * Kp)
+    A = np.asarray(hz.double_layer(image, body, body, k, par).weak_form().A)
+    np.negative(A, out=A)
+    A += eta * np.asarray(hz.hypersingular(image, body, body, k, par).weak_form().A)
+    B = np.asarray(hz.single_layer(image, body, body, k, par).weak_form().A)
+    B += eta * np.asarray(hz.adjoint_double_layer(image, body, body, k, par).weak_form().A)
+    return A, B
+
+
+def add_circulant(full: np.ndarray, row: np.ndarray, n_nodes: int) -> np.ndarray:
+    """full += the block-circulant matrix of first block row ``row`` (in place; returns ``full``)."""
+    r = np.asarray(row).reshape(n_nodes, -1, n_nodes)
+    n_phi = r.shape[1]
+    view = full.reshape(n_phi, n_nodes, n_phi, n_nodes)
+    for j in range(n_phi):
+        view[j] += r[:, (np.arange(n_phi) - j) % n_phi, :]
+    return full
 
 
 def ground_power(vertices, triangles, n_nodes: int, k: float, vns, axis: int, plane: float, rho: float = 1.21,
@@ -134,9 +136,9 @@ def ground_power(vertices, triangles, n_nodes: int, k: float, vns, axis: int, pl
     ``rows`` / ``cross``: ``first_block_row`` / ``cross_block`` output if already assembled."""
     A, B, _ = rows if rows is not None else first_block_row(vertices, triangles, n_nodes, k)
     A12, B12 = cross if cross is not None else cross_block(vertices, triangles, k, axis, plane, order)
-    A12 = A12 + _circulant(A, n_nodes)
-    B12 = B12 + _circulant(B, n_nodes)
-    lu = lu_factor(A12, overwrite_a=True)
+    A12 = add_circulant(A12, A, n_nodes)
+    B12 = add_circulant(B12, B, n_nodes)
+    lu = lu_factor(A12, overwrite_a=True, check_finite=False)
     api = _api()
     space = api.function_space(grid_from_arrays(vertices, triangles), "P", 1)
     M = api.operators.boundary.sparse.identity(space, space, space).weak_form().A

@@ -49,3 +49,24 @@ def test_revolution_solver_equals_the_full_solve():
     for w2, wh in zip(pair, half):                       # the pair's 3-D matrices are mirror-symmetric only to
         assert abs(wh / (0.5 * w2) - 1) < 1e-4, (wh, 0.5 * w2)    # bempp's quadrature (measured 2e-5 = 1e-4 dB)
     assert abs(half[1] / full[2] - 1) > 1e-3              # the ground does change the power
+
+
+def test_block_circulant_algebra():
+    """add_circulant builds A[(j, i), (k, l)] = row[i, (k - j) mod n_phi, l]; the ring matrix of harmonic
+    m maps e^{i m phi} fields like the full matrix does; harmonic_parts splits cos n (phi - phi_c)."""
+    from solvers.bem_revolution import _ring_matrix, add_circulant, harmonic_parts
+
+    nn, n_phi = 3, 7
+    rng = np.random.default_rng(0)
+    row = rng.normal(size=(nn, n_phi * nn)) + 1j * rng.normal(size=(nn, n_phi * nn))
+    full = add_circulant(np.zeros((nn * n_phi, nn * n_phi), complex), row, nn)
+    j, i, k, l = 4, 1, 2, 0
+    assert full[j * nn + i, k * nn + l] == row[i, ((k - j) % n_phi) * nn + l]
+    phi = 2 * np.pi * np.arange(n_phi) / n_phi
+    x = rng.normal(size=nn) + 1j * rng.normal(size=nn)
+    for m in (-2, 0, 3):
+        y = full @ np.kron(np.exp(1j * m * phi), x)
+        assert np.allclose(y, np.kron(np.exp(1j * m * phi), _ring_matrix(row, nn, m) @ x))
+    v = np.kron(np.cos(2 * (phi - 0.3)), x)
+    parts = harmonic_parts(v, nn, 2)
+    assert np.allclose(parts[2], 0.5 * np.exp(-0.6j) * x) and np.allclose(parts[-2], 0.5 * np.exp(0.6j) * x)
