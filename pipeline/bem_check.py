@@ -245,6 +245,8 @@ def main(argv=None) -> int:
                     help="revolution: the symmetric solver (default); 3-D: the whole mesh")
     ap.add_argument("--ground-order", type=int, default=None,
                     help="quadrature order of the image wheel's (non-singular) cross block (default bempp's 4)")
+    ap.add_argument("--device", choices=("numba", "opencl"), default="numba",
+                    help="bempp-cl's backend (opencl: needs pyopencl and an OpenCL CPU driver, e.g. pocl)")
     ap.add_argument("--default-case", action="store_true", help="also the default case's limit cycle")
     ap.add_argument("--convergence", type=int, nargs="*", default=None,
                     help="only the mesh convergence of these (n,0,a) modes (free field; none given: 2)")
@@ -252,7 +254,18 @@ def main(argv=None) -> int:
     a = ap.parse_args(argv)
     logging.basicConfig(level=logging.INFO, format="%(levelname)s %(name)s: %(message)s")
     ground = None if a.no_ground else GROUND_BELOW_CONTACT
+    if not a.from_csv:
+        from solvers.bem import use_device
+
+        try:
+            use_device(a.device)
+        except ValueError as e:
+            raise SystemExit(f"pipeline.bem_check: {e}") from None
     model = load_radiation_model("default")
+    have = sorted({int(model.n[j]) for j in range(len(model.f_r)) if model.m[j] == 0 and model.cls[j] == "a"})
+    bad = [n for n in (a.modes or []) + (a.convergence or []) if n not in have]
+    if bad:
+        raise SystemExit(f"pipeline.bem_check: --modes/--convergence {bad}: the wheel's (n,0,a) modes are n = {have}")
     if a.from_csv:
         write([], ground, a.ds_max, plan=plan_rows(model, a.ds_max))
         return 0

@@ -32,6 +32,17 @@ def _api():
     return api
 
 
+def use_device(name: str) -> None:
+    """bempp-cl's backend for the operators assembled from now on: "numba" (always there) or "opencl"
+    (needs pyopencl and an OpenCL CPU driver such as pocl; bempp picks it by default when present)."""
+    api = _api()
+    if name not in ("numba", "opencl"):
+        raise ValueError(f"bempp device {name!r}: 'numba' or 'opencl'")
+    if name == "opencl" and not api.CPU_OPENCL_DRIVER_FOUND:
+        raise ValueError("bempp device 'opencl': no OpenCL CPU driver found (pyopencl and pocl)")
+    api.DEFAULT_DEVICE_INTERFACE = name
+
+
 def grid_from_arrays(vertices: np.ndarray, triangles: np.ndarray):
     """A bempp grid from vertices (N, 3) and triangles (T, 3) (counter-clockwise seen from outside)."""
     return _api().Grid(np.ascontiguousarray(np.asarray(vertices, float).T),
