@@ -138,8 +138,12 @@ def convergence_meshes(model, n: int):
 
 
 def solver_label(solver: str, ground_order: int | None) -> str:
-    """The table's solver column: the solver, and the cross block's quadrature order if not bempp's."""
-    return solver if ground_order is None else f"{solver}, ground q{ground_order}"
+    """The table's solver column: the solver, the cross block's quadrature order if not bempp's, and
+    bempp's backend if not numba."""
+    from solvers.bem import device
+
+    return (solver + ("" if ground_order is None else f", ground q{ground_order}")
+            + ("" if device() == "numba" else f", {device()}"))
 
 
 def _load() -> str:
@@ -161,10 +165,11 @@ def convergence_rows(model, n: int = 2, meshes=CONVERGENCE, done: list[dict] = (
     for ds, n_phi in meshes:
         V, _, _, loop, _ = wheel_mesh(model, n, f, ds, n_phi)
         n_around = len(V) // len(loop)
-        if (f"({n},0,a)", round(ds, 4), n_around, solver) in have:
+        if (f"({n},0,a)", round(ds, 4), n_around, solver_label(solver, None)) in have:
             continue
         free, _, nv, t_free, _ = _powers(model, n, f, [(1.0, 0.0)], ds, None, n_phi, solver)
-        rows.append({"mode": f"({n},0,a)", "ds_max": ds, "n_phi": n_around, "vertices": nv, "solver": solver,
+        rows.append({"mode": f"({n},0,a)", "ds_max": ds, "n_phi": n_around, "vertices": nv,
+                     "solver": solver_label(solver, None),
                      "dL_free": bem.level(free[0]) - bem.level(W_s), "wall_s": t_free, "load": _load()})
         log.info("%s", rows[-1])
     return rows
@@ -191,7 +196,7 @@ def default_case_row(model, ds_max: float, ground: float | None, solver: str = "
                                          ground, None, solver)
     W0, Wh = s["W_total"], float(s["W_n"][h, j])
     return {"mode": f"default case: tone {d.tone_f[ti]:.2f} Hz, n = {n}", "f_hz": float(d.tone_f[ti]),
-            "force": "limit cycle", "vertices": nv, "solver": solver, "L_W_simple": bem.level(W0),
+            "force": "limit cycle", "vertices": nv, "solver": solver_label(solver, None), "L_W_simple": bem.level(W0),
             "L_W_bem_free": bem.level(W0 - Wh + free[0]),
             "L_W_bem_ground": bem.level(W0 - Wh + gr[0]) if np.isfinite(gr[0]) else np.nan,
             "dL_free": bem.level(W0 - Wh + free[0]) - bem.level(W0),

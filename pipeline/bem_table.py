@@ -199,7 +199,7 @@ def _summary(rows: list[dict]) -> str:
     dgr = [r["dL_ground"] for r in modes_ if np.isfinite(r["dL_ground"])]
     pairs = {}
     for r in modes_:
-        pairs.setdefault(r["mode"], []).append(r["dL_free"])
+        pairs.setdefault((r["mode"], r["solver"]), []).append(r["dL_free"])
     split = max(max(v) - min(v) for v in pairs.values())
     below = sorted({r["mode"] for r in modes_ if r["dL_free"] <= -0.5})
     return (f"Delta L_W per (n,0,a) mode and unit force: free field {min(dfree):+.1f} to {max(dfree):+.1f} dB"
@@ -217,24 +217,31 @@ def fragment_text(wheel: list[dict], conv: list[dict], ds_max: float, plan=()) -
     """docs/validation/72_bem_wheel.md from the cached rows."""
     from solvers.constants import F_MAX_HZ
 
+    spread = {}
+    for r in wheel:
+        for c in ("L_W_bem_free", "L_W_bem_ground"):
+            if np.isfinite(r[c]):
+                spread.setdefault((r["mode"], r["force"], c), []).append(r[c])
+    sf = [max(v) - min(v) for (_, _, c), v in spread.items() if c == "L_W_bem_free" and len(v) > 1]
+    sg = [max(v) - min(v) for (_, _, c), v in spread.items() if c == "L_W_bem_ground" and len(v) > 1]
+    agree_text = (" Where a mode was computed more than once (solvers, backends, cross-block quadrature orders) "
+                  f"the free-field levels differ by at most {max(sf):.2f} dB"
+                  + (f" and the ground levels by at most {max(sg):.4f} dB" if sg else "")
+                  + " (the earlier 3-D rows are stored as printed, to 0.1 dB)." if sf else "")
     both = {}
     for r in wheel:
         both.setdefault((r["mode"], r["force"]), {})[r["solver"]] = r
-    agree = [max(abs(v[SOLVER_3D][c] - v[SOLVER_REV][c]) for c in ("L_W_bem_free", "L_W_bem_ground"))
-             for v in both.values() if SOLVER_3D in v and SOLVER_REV in v]
-    agree_text = (f" On the rows computed both ways the two solvers' levels (free and ground) differ by at most "
-                  f"{max(agree):.2f} dB (the earlier 3-D rows are stored as printed, to 0.1 dB)." if agree else "")
     quad = {}
     for (m, _), v in both.items():
         for s_, r in v.items():
-            if ", ground q" in s_ and SOLVER_REV in v and np.isfinite(r["dL_ground"]):
-                d = abs(r["dL_ground"] - v[SOLVER_REV]["dL_ground"])
+            base = s_.split(", ground q")[0].replace(", opencl", "")
+            if ", ground q" in s_ and np.isfinite(r["dL_ground"]) and base in v and np.isfinite(v[base]["dL_ground"]):
+                d = abs(r["dL_ground"] - v[base]["dL_ground"])
                 quad[(m, s_)] = max(quad.get((m, s_), 0.0), d)
-    quad = [(m, s_, d) for (m, s_), d in quad.items()]
     if quad:
         agree_text += (" A lower quadrature order of the image's cross block (its integrals are regular: the image "
                        f"is at least {2 * GROUND_BELOW_CONTACT * 1e3:.0f} mm away) changes Delta ground by at most "
-                       + ", ".join(f"{d:.3f} dB ({m}, {s_.split(', ')[1]})" for m, s_, d in quad) + ".")
+                       + ", ".join(f"{d:.4f} dB ({m}, {s_.split(', ')[1]})" for (m, s_), d in quad.items()) + ".")
     status = ""
     if plan:
         done = {}

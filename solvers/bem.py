@@ -43,6 +43,11 @@ def use_device(name: str) -> None:
     api.DEFAULT_DEVICE_INTERFACE = name
 
 
+def device() -> str:
+    """bempp-cl's backend in use ("numba" or "opencl")."""
+    return _api().DEFAULT_DEVICE_INTERFACE
+
+
 def grid_from_arrays(vertices: np.ndarray, triangles: np.ndarray):
     """A bempp grid from vertices (N, 3) and triangles (T, 3) (counter-clockwise seen from outside)."""
     return _api().Grid(np.ascontiguousarray(np.asarray(vertices, float).T),

@@ -95,28 +95,31 @@ def revolution_power(vertices, triangles, n_nodes: int, k: float, vns, n: int, r
     return out
 
 
-def cross_block(vertices, triangles, k: float, axis: int, plane: float, order: int | None = None):
-    """A_12 and B_12 (N, N): the image body's (mirror in x_axis = plane) action on the body, test
-    functions on the body, trial functions on the image (vertex order as the body's); ``order``: the
-    regular quadrature order (bempp's default 4: 6 points per triangle) of these non-singular
-    integrals."""
+def _cross_ops(vertices, triangles, k: float, axis: int, plane: float, order: int | None):
+    """The image body's (mirror in x_axis = plane) operators on the body (Helmholtz double layer,
+    hypersingular, single layer, adjoint double layer, not yet assembled): test functions on the body,
+    trial functions on the image (vertex order as the body's; two grids, so bempp assembles only
+    regular integrals); ``order``: the regular quadrature order (bempp's default 4: 6 points per
+    triangle) of these non-singular integrals."""
     api = _api()
     par = api.DefaultParameters()
     if order is not None:
         par.quadrature.regular = int(order)
     Vm, Tm = mirrored(vertices, triangles, axis, plane)
-    grid = grid_from_arrays(Vm, Tm)
-    nt = len(triangles)
-    body = api.function_space(grid, "P", 1, support_elements=np.arange(nt), include_boundary_dofs=False)
-    image = api.function_space(grid, "P", 1, support_elements=np.arange(nt, 2 * nt), include_boundary_dofs=False)
+    nv = len(vertices)
+    body = api.function_space(grid_from_arrays(vertices, triangles), "P", 1)
+    image = api.function_space(grid_from_arrays(Vm[nv:], Tm[len(triangles):] - nv), "P", 1)
     hz = api.operators.boundary.helmholtz
+    return tuple(op(image, body, body, k, par) for op in
+                 (hz.double_layer, hz.hypersingular, hz.single_layer, hz.adjoint_double_layer))
+
+
+def cross_block(vertices, triangles, k: float, axis: int, plane: float, order: int | None = None):
+    """A_12 and B_12 (N, N) of the image's action on the body (``_cross_ops``)."""
+    K, W, V, Kp = _cross_ops(vertices, triangles, k, axis, plane, order)
     eta = 1j / k
-    A = np.asarray(hz.double_layer(image, body, body, k, par).weak_form().A)
-    np.negative(A, out=A)
-    A += eta * np.asarray(hz.hypersingular(image, body, body, k, par).weak_form().A)
-    B = np.asarray(hz.single_layer(image, body, body, k, par).weak_form().A)
-    B += eta * np.asarray(hz.adjoint_double_layer(image, body, body, k, par).weak_form().A)
-    return A, B
+    return (-np.asarray(K.weak_form().A) + eta * np.asarray(W.weak_form().A),
+            np.asarray(V.weak_form().A) + eta * np.asarray(Kp.weak_form().A))
 
 
 def add_circulant(full: np.ndarray, row: np.ndarray, n_nodes: int) -> np.ndarray:
@@ -129,22 +132,41 @@ def add_circulant(full: np.ndarray, row: np.ndarray, n_nodes: int) -> np.ndarray
     return full
 
 
+def circulant_matvec(row: np.ndarray, n_nodes: int, x: np.ndarray) -> np.ndarray:
+    """The block-circulant matrix of first block row ``row`` times x, without forming it."""
+    r = np.asarray(row)
+    xr = np.asarray(x).reshape(-1, n_nodes)
+    return np.concatenate([r @ np.roll(xr, -j, axis=0).ravel() for j in range(len(xr))])
+
+
 def ground_power(vertices, triangles, n_nodes: int, k: float, vns, axis: int, plane: float, rho: float = 1.21,
-                 c: float = 343.0, rows=None, cross=None, order: int | None = None) -> list[float]:
+                 c: float = 343.0, rows=None, order: int | None = None) -> list[float]:
     """Radiated power [W] into the half space x_axis > plane (rigid plane) of each velocity field of
     ``vns`` (per vertex): the body and its image, by the pair's mirror symmetry (module docstring);
-    ``rows`` / ``cross``: ``first_block_row`` / ``cross_block`` output if already assembled."""
+    ``rows``: ``first_block_row``'s output if already assembled.  Memory: two dense N x N matrices (the
+    left-hand side, factored in place, and one operator at a time of the right-hand side)."""
     A, B, _ = rows if rows is not None else first_block_row(vertices, triangles, n_nodes, k)
-    A12, B12 = cross if cross is not None else cross_block(vertices, triangles, k, axis, plane, order)
-    A12 = add_circulant(A12, A, n_nodes)
-    B12 = add_circulant(B12, B, n_nodes)
-    lu = lu_factor(A12, overwrite_a=True, check_finite=False)
+    K, W, V, Kp = _cross_ops(vertices, triangles, k, axis, plane, order)
+    eta = 1j / k
+    lhs = np.asarray(K.weak_form().A)
+    del K
+    np.negative(lhs, out=lhs)
+    lhs += eta * np.asarray(W.weak_form().A)
+    del W
+    add_circulant(lhs, A, n_nodes)
+    lu = lu_factor(lhs.T, overwrite_a=True, check_finite=False)        # F-ordered: factored in place
+    del lhs
+    qs = [1j * k * c * rho * np.asarray(vn, complex) for vn in vns]
+    rhs = [circulant_matvec(B, n_nodes, q) for q in qs]
+    for op, w in ((V, 1.0), (Kp, eta)):
+        m = np.asarray(op.weak_form().A)
+        rhs = [r + w * (m @ q) for r, q in zip(rhs, qs)]
+        del m
     api = _api()
     space = api.function_space(grid_from_arrays(vertices, triangles), "P", 1)
     M = api.operators.boundary.sparse.identity(space, space, space).weak_form().A
     out = []
-    for vn in vns:
-        vn = np.asarray(vn, complex)
-        p = lu_solve(lu, -(B12 @ (1j * k * c * rho * vn)))
-        out.append(0.5 * float(np.real(np.conj(vn) @ (M @ p))))
+    for vn, r in zip(vns, rhs):
+        p = lu_solve(lu, -r, trans=1, check_finite=False)
+        out.append(0.5 * float(np.real(np.conj(np.asarray(vn, complex)) @ (M @ p))))
     return out

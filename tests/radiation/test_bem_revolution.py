@@ -54,7 +54,7 @@ def test_revolution_solver_equals_the_full_solve():
 def test_block_circulant_algebra():
     """add_circulant builds A[(j, i), (k, l)] = row[i, (k - j) mod n_phi, l]; the ring matrix of harmonic
     m maps e^{i m phi} fields like the full matrix does; harmonic_parts splits cos n (phi - phi_c)."""
-    from solvers.bem_revolution import _ring_matrix, add_circulant, harmonic_parts
+    from solvers.bem_revolution import _ring_matrix, add_circulant, circulant_matvec, harmonic_parts
 
     nn, n_phi = 3, 7
     rng = np.random.default_rng(0)
@@ -62,6 +62,8 @@ def test_block_circulant_algebra():
     full = add_circulant(np.zeros((nn * n_phi, nn * n_phi), complex), row, nn)
     j, i, k, l = 4, 1, 2, 0
     assert full[j * nn + i, k * nn + l] == row[i, ((k - j) % n_phi) * nn + l]
+    z = rng.normal(size=nn * n_phi) + 1j * rng.normal(size=nn * n_phi)
+    assert np.allclose(circulant_matvec(row, nn, z), full @ z)
     phi = 2 * np.pi * np.arange(n_phi) / n_phi
     x = rng.normal(size=nn) + 1j * rng.normal(size=nn)
     for m in (-2, 0, 3):
