@@ -151,8 +151,11 @@ def ground_power(vertices, triangles, n_nodes: int, k: float, vns, axis: int, pl
     lhs = np.asarray(K.weak_form().A)
     del K
     np.negative(lhs, out=lhs)
-    lhs += eta * np.asarray(W.weak_form().A)
+    m = np.asarray(W.weak_form().A)
     del W
+    m *= eta
+    lhs += m
+    del m
     add_circulant(lhs, A, n_nodes)
     lu = lu_factor(lhs.T, overwrite_a=True, check_finite=False)        # F-ordered: factored in place
     del lhs

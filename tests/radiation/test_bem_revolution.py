@@ -24,11 +24,22 @@ def _body():
     return V, T, phi, len(rz)
 
 
+def _devices() -> list[str]:
+    try:
+        import bempp_cl.api as api
+    except ImportError:
+        return ["numba"]
+    return ["numba"] + (["opencl"] if api.CPU_OPENCL_DRIVER_FOUND else [])
+
+
 @pytest.mark.validation
-def test_revolution_solver_equals_the_full_solve():
+@pytest.mark.parametrize("device", _devices())
+def test_revolution_solver_equals_the_full_solve(device):
     pytest.importorskip("bempp_cl")
     from solvers import bem
     from solvers.bem_revolution import first_block_row, ground_power, harmonic_parts, revolution_power
+
+    bem.use_device(device)
 
     V, T, phi, nn = _body()
     k = 2 * np.pi * 1000.0 / 343.0                       # ~ lambda / 2 elements around: the algebra, not accuracy
@@ -49,6 +60,7 @@ def test_revolution_solver_equals_the_full_solve():
     for w2, wh in zip(pair, half):                       # the pair's 3-D matrices are mirror-symmetric only to
         assert abs(wh / (0.5 * w2) - 1) < 1e-4, (wh, 0.5 * w2)    # bempp's quadrature (measured 2e-5 = 1e-4 dB)
     assert abs(half[1] / full[2] - 1) > 1e-3              # the ground does change the power
+    bem.use_device("numba")
 
 
 def test_block_circulant_algebra():
