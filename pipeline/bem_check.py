@@ -124,17 +124,19 @@ CONVERGENCE = ((0.03, None), (0.03, 36), (0.015, 24), (0.015, 36), (0.03, 48), (
 
 
 def convergence_meshes(model, n: int):
-    """The meshes of the convergence check of (n,0,a): ``CONVERGENCE`` for (2,0,a) (as first measured);
-    otherwise the lambda/6 mesh, the element size along the outline halved, the vertices around x 1.5,
-    and both."""
-    if n == 2:
-        return CONVERGENCE
+    """The meshes of the convergence check of (n,0,a) (element size along the outline, vertices around or
+    None for the lambda/6 rule): for (2,0,a) ``CONVERGENCE`` (as first measured, 3-D); then for every mode
+    the lambda/6 mesh, the element size along the outline halved and quartered (if above 6 mm), every
+    node of the FE section's outline (size 0: 228 nodes, about 5 mm apart) and, up to (5,0,a), that
+    outline with 1.5 x the vertices around."""
     f = float(model.f_r[[j for j in range(len(model.f_r)) if model.n[j] == n and model.m[j] == 0
                          and model.cls[j] == "a"][0]])
-    h = model.c0 / f / 6
+    h = min(model.c0 / f / 6, 0.03)
     V, _, _, loop, _ = wheel_mesh(model, n, f, 0.03)
     around = len(V) // len(loop)
-    return ((0.03, None), (min(h, 0.03) / 2, None), (0.03, round(1.5 * around)), (min(h, 0.03) / 2, round(1.5 * around)))
+    out = ([(0.03, None), (h / 2, None)] + ([(h / 4, None)] if h / 4 > 0.006 else []) + [(0.0, None)]
+           + ([(0.0, round(1.5 * around))] if n <= 5 else []))
+    return (CONVERGENCE if n == 2 else ()) + tuple(out)
 
 
 def solver_label(solver: str, ground_order: int | None) -> str:
@@ -278,9 +280,12 @@ def main(argv=None) -> int:
         from . import bem_table as bt
 
         done = bt.cached(paths.build() / "studies" / "bem", ROOT / "docs" / "validation" / "72_bem_wheel.md")[1]
+        plan = plan_rows(model, a.ds_max)
         for n in a.convergence or [2]:
-            rows = convergence_rows(model, n, convergence_meshes(model, n), done, a.solver)
-            write([], ground, a.ds_max, rows, plan_rows(model, a.ds_max))
+            for mesh in convergence_meshes(model, n):                   # one row at a time, each written
+                rows = convergence_rows(model, n, [mesh], done, a.solver)
+                done = done + rows
+                write([], ground, a.ds_max, rows, plan)
         return 0
     plan = plan_rows(model, a.ds_max)
     rows = wheel_rows(model, a.modes, a.ds_max, ground, a.solver, a.ground_order,

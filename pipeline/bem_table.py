@@ -37,6 +37,8 @@ def _value(key: str, text: str):
         return text
     if text in ("", "-", "nan"):
         return math.nan
+    if key == "ds_max" and text == "FE outline":
+        return 0.0
     return float(text)
 
 
@@ -137,12 +139,13 @@ def merge_conv(old: list[dict], new: list[dict]) -> list[dict]:
 
 
 def cached(out: Path, fragment: Path) -> tuple[list[dict], list[dict]]:
-    """(wheel rows, convergence rows): the CSV cache in ``out``, merged over the fragment's rows."""
+    """(wheel rows, convergence rows): the CSV cache in ``out``; a table whose CSV is missing is seeded
+    from the fragment's rows (as printed)."""
     seed_w, seed_c = rows_from_fragment(fragment.read_text()) if fragment.exists() else ([], [])
     w = read_csv(out / "wheel.csv", WHEEL_KEYS, {"solver": SOLVER_3D, "load": ""}) if (out / "wheel.csv").exists() else []
     c = (read_csv(out / "convergence.csv", CONV_KEYS, {"solver": SOLVER_3D, "mode": "(2,0,a)", "load": ""})
          if (out / "convergence.csv").exists() else [])
-    return merge_wheel(seed_w, w), merge_conv(seed_c, c)
+    return merge_wheel([] if w else seed_w, w), merge_conv([] if c else seed_c, c)
 
 
 def _f(x, fmt: str) -> str:
@@ -196,7 +199,8 @@ def mode_table(rows: list[dict]) -> str:
 def conv_table(rows: list[dict]) -> str:
     lines = [CONV_HEAD, "|" + "---|" * 8]
     for r in rows:
-        lines.append(f"| {r['mode']} | {1e3 * float(r['ds_max']):.0f} | {int(float(r['n_phi']))} | {int(float(r['vertices']))} "
+        ds = f"{1e3 * float(r['ds_max']):.1f}" if float(r["ds_max"]) > 0 else "FE outline"
+        lines.append(f"| {r['mode']} | {ds} | {int(float(r['n_phi']))} | {int(float(r['vertices']))} "
                      f"| {r['solver']} | {float(r['dL_free']):+.2f} | {_f(float(r['wall_s']), '.0f')} | {r['load']} |")
     return "\n".join(lines)
 

@@ -31,6 +31,8 @@ def test_fragment_rows_round_trip():
     text = bt.wheel_table(wheel) + "\n\n" + bt.conv_table(conv) + "\n"
     w2, c2 = bt.rows_from_fragment(text)                     # the present form reads back the same rows
     assert w2 == wheel and c2 == conv
+    fe = dict(conv[0], ds_max=0.0)                           # every node of the FE outline
+    assert bt.rows_from_fragment(bt.conv_table([fe]))[1][0]["ds_max"] == 0.0
     assert "| (3,0,a) | 1147.9 | radial | 2052 | 3-D | 90.7 | 89.2 | 89.2 | -1.5 | -1.4 | 447 / 617 | 4-10 |" in text
 
 
