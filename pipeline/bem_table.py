@@ -174,11 +174,13 @@ def _rank(label: str) -> int:
     return 0 if label == SOLVER_REV else 1 if label.startswith(SOLVER_REV) else 2
 
 
-def mode_table(rows: list[dict]) -> str:
+def mode_table(rows: list[dict], conv: list[dict] = ()) -> str:
     """Per (n,0,a) mode: Delta free and over the ground for the lateral and radial force, each from the
-    preferred solve that has it (``_rank``)."""
+    preferred solve that has it (``_rank``), and the convergence check's finest mesh (unit lateral force,
+    free field) with the spread of Delta over its meshes."""
     lines = ["| mode | f (Hz) | vertices | Delta free, lateral / radial (dB) | Delta ground, lateral / radial (dB) | "
-             "solver (free; ground) |", "|" + "---|" * 6]
+             "solver (free; ground) | Delta free, finest mesh (vertices) | spread over the meshes (dB) |",
+             "|" + "---|" * 8]
     modes = sorted({r["mode"] for r in rows if not r["mode"].startswith("default")})
     for m in modes:
         rs = [r for r in rows if r["mode"] == m]
@@ -191,8 +193,13 @@ def mode_table(rows: list[dict]) -> str:
         cell = {c: " / ".join(_f(next((r[c] for r in pick[c] if r["force"] == fo), math.nan), "+.1f")
                               for fo in ("lateral", "radial")) if c in pick else "-" for c in ("dL_free", "dL_ground")}
         src = "; ".join(pick[c][0]["solver"] if c in pick else "not done" for c in ("dL_free", "dL_ground"))
+        cs = [r for r in conv if r["mode"] == m]
+        fine = max(cs, key=lambda r: float(r["vertices"])) if cs else None
+        d = [float(r["dL_free"]) for r in cs]
+        conv_cells = (f"{float(fine['dL_free']):+.1f} ({int(float(fine['vertices']))}) | {max(d) - min(d):.1f} ({len(cs)})"
+                      if fine else "- | -")
         lines.append(f"| {m} | {rs[0]['f_hz']:.0f} | {int(rs[0]['vertices'])} | {cell['dL_free']} | {cell['dL_ground']} | "
-                     f"{src} |")
+                     f"{src} | {conv_cells} |")
     return "\n".join(lines)
 
 
@@ -331,7 +338,7 @@ solve ("4-10": the first rows' runs, as stated then).
 
 Delta L_W per mode (the table of every solve follows):
 
-{mode_table(wheel)}
+{mode_table(wheel, conv)}
 
 {_summary(wheel)}
 
