@@ -304,8 +304,8 @@ def fragment_text(wheel: list[dict], conv: list[dict], ds_max: float, plan=()) -
         status = ("\n\nThe radiation stage's (n,0,a) modes with n >= 2 (up to its f_max, "
                   f"{F_MAX_HZ:.0f} Hz), their lambda/6 meshes and what is in the table above (the 3-D solve's "
                   "dense matrices need 16 N^2 bytes each, four times that with the image wheel; the revolution "
-                  "solver's free field needs 1/(vertices around) of that, its ground one N x N cross block and "
-                  "the wheel's own N x N matrix):\n\n"
+                  "solver's free field needs 1/(vertices around) of that, its ground two N x N matrices: the "
+                  "left-hand side, factored in place, and one operator at a time of the right-hand side):\n\n"
                   "| mode | f (Hz) | vertices (along x around) | one dense 3-D matrix (GB) | free field | ground |\n"
                   "|---|---|---|---|---|---|\n"
                   + "\n".join(f"| {p['mode']} | {p['f_hz']:.0f} | {p['vertices']} ({p['along']} x {p['around']}) | "
@@ -366,12 +366,18 @@ def _cost_note(wheel: list[dict], plan, done: dict) -> str:
     if not meas or not todo:
         return ""
     rate, ref = min(meas, key=lambda m: m[0])
+    numba = [m for m in meas if "opencl" not in m[1]["solver"]]
+    rate_nb, ref_nb = min(numba, key=lambda m: m[0]) if numba else (rate, ref)
+
+    def cost(p):
+        big = p["dense_gb"] > POCL_MAX_BUFFER_GB
+        r = rate_nb if big else rate
+        return (f"{p['mode']} would take {r * (2 * p['vertices']) ** 2 / 60:.0f} min and {2 * p['dense_gb']:.0f} GB"
+                + (f" (one matrix, {p['dense_gb']:.1f} GB, exceeds pocl's largest buffer here, {POCL_MAX_BUFFER_GB} GB: "
+                   f"numba, {rate_nb * 1e6:.2f} us per pair measured on {ref_nb['mode']})" if big else ""))
+
     return ("\n\nThe grounds not done: the fastest measured ground took "
             f"{ref['wall_ground_s']:.0f} s for {ref['mode']} ({int(ref['vertices'])} vertices, {ref['solver']}, load "
             f"{ref['load']}), {rate * 1e6:.2f} us per pair of triangles of the image's cross block; at that rate "
-            + ", ".join(f"{p['mode']} would take {rate * (2 * p['vertices']) ** 2 / 60:.0f} min and "
-                        f"{2 * p['dense_gb']:.0f} GB"
-                        + (f" (one matrix, {p['dense_gb']:.1f} GB, exceeds pocl's largest buffer here, "
-                           f"{POCL_MAX_BUFFER_GB} GB: numba only)" if p["dense_gb"] > POCL_MAX_BUFFER_GB else "")
-                        for p in todo)
+            + ", ".join(cost(p) for p in todo)
             + " on a machine of 23 GB shared by three sessions.")
