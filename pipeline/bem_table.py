@@ -225,6 +225,14 @@ def conv_summary(rows: list[dict]) -> str:
                    f"on the coarsest ({int(float(coarse['vertices']))} vertices) and {float(fine['dL_free']):+.2f} dB "
                    f"on the finest ({int(float(fine['vertices']))}): refinement moves the BEM "
                    f"{'up' if move > 0 else 'down'} by {abs(move):.2f} dB.")
+    fine = {m: float(max((r for r in rows if r["mode"] == m), key=lambda r: float(r["vertices"]))["dL_free"])
+            for m in sorted({r["mode"] for r in rows})}
+    if fine:
+        grp = lambda ok: ", ".join(m for m, d in fine.items() if ok(d)) or "no mode"           # noqa: E731
+        out.append(f"On each mode's finest mesh Delta is {min(fine.values()):+.1f} to {max(fine.values()):+.1f} dB: the "
+                   f"simple model is 0.5 dB or more above the BEM (the reference's finding) for {grp(lambda d: d <= -0.5)}, "
+                   f"within 0.5 dB for {grp(lambda d: abs(d) < 0.5)} and 0.5 dB or more below it for "
+                   f"{grp(lambda d: d >= 0.5)}.")
     return " ".join(out)
 
 
