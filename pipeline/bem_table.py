@@ -342,7 +342,10 @@ unknowns are the wheel's: its own matrix (rebuilt from the first block row) plus
 the same power to 1e-8 in free field (harmonics 0-3) and to 1e-4 over a ground (the 3-D pair is mirror-symmetric only to bempp's quadrature).{agree_text} Wall times: one
 thread (`OMP_NUM_THREADS=1 NUMBA_NUM_THREADS=1`, `nice -n 5`) on a shared 2-core machine, including
 bempp's numba compilation (about 1-2 min per process); load = the 1-min load average at the end of the
-solve ("4-10": the first rows' runs, as stated then).
+solve ("4-10": the first rows' runs, as stated then). Backends: bempp-cl's numba (default) or its OpenCL
+kernels on the CPU through pocl (`, opencl` in the solver column, `--device opencl`; the sphere check and the
+solvers' check run on both; `python -m benchmarks bem` compares their speed); `, ground qN`: the image's
+cross block at quadrature order N instead of bempp's 4.
 
 Delta L_W per mode (the table of every solve follows):
 
