@@ -27,6 +27,7 @@ _WHEEL_COLS = {"mode": ("mode",), "f (Hz)": ("f_hz",), "force": ("force",), "ver
                "Delta ground (dB)": ("dL_ground",), "wall free / ground (s)": ("wall_free_s", "wall_ground_s"),
                "load": ("load",)}
 _CONV_COLS = {"mode": ("mode",), "element size along the outline (mm)": ("ds_max",),
+              "ds_max along the outline (mm; lambda/6 caps it)": ("ds_max",),
               "vertices around": ("n_phi",), "vertices": ("vertices",), "solver": ("solver",),
               "Delta free (dB)": ("dL_free",), "wall (s)": ("wall_s",), "load": ("load",)}
 
@@ -154,7 +155,7 @@ def _f(x, fmt: str) -> str:
 
 WHEEL_HEAD = ("| mode | f (Hz) | force | vertices (wheel) | solver | L_W simple (dB) | BEM free | BEM + ground | "
               "Delta free (dB) | Delta ground (dB) | wall free / ground (s) | load |")
-CONV_HEAD = ("| mode | element size along the outline (mm) | vertices around | vertices | solver | Delta free (dB) | "
+CONV_HEAD = ("| mode | ds_max along the outline (mm; lambda/6 caps it) | vertices around | vertices | solver | Delta free (dB) | "
              "wall (s) | load |")
 
 
