@@ -16,7 +16,7 @@ cross terms in the power sum to zero over the rings.
 
 A rigid ground breaks the symmetry: ``ground_power`` uses the image body (``solvers.bem.mirrored``)
 and the mirror symmetry of the pair (the image's pressure is the mirror of the body's), so the
-unknowns are the body's only: (A_11 + A_12) p = (B_11 + B_12) q with A_11 the body's own (block-
+unknowns are the body's only: (A_11 + A_12) p = -(B_11 + B_12) q with A_11 the body's own (block-
 circulant, from its first block row) and A_12 the image's action on the body (assembled by bempp,
 no singular integrals; image vertices in the body's order).
 """
