@@ -128,14 +128,16 @@ def convergence_meshes(model, n: int):
     None for the lambda/6 rule): for (2,0,a) ``CONVERGENCE`` (as first measured, 3-D); then for every mode
     the lambda/6 mesh, the element size along the outline halved and quartered (if above 6 mm), every
     node of the FE section's outline (size 0: 228 nodes, about 5 mm apart) and, up to (5,0,a), that
-    outline with 1.5 x the vertices around (and 2 x up to (3,0,a))."""
+    outline with 1.5 x the vertices around (2 x up to (3,0,a); 3 x and 4 x for (2,0,a), whose 24 around
+    are the coarsest)."""
     f = float(model.f_r[[j for j in range(len(model.f_r)) if model.n[j] == n and model.m[j] == 0
                          and model.cls[j] == "a"][0]])
     h = min(model.c0 / f / 6, 0.03)
     V, _, _, loop, _ = wheel_mesh(model, n, f, 0.03)
     around = len(V) // len(loop)
     out = ([(0.03, None), (h / 2, None)] + ([(h / 4, None)] if h / 4 > 0.006 else []) + [(0.0, None)]
-           + ([(0.0, round(1.5 * around))] if n <= 5 else []) + ([(0.0, 2 * around)] if n <= 3 else []))
+           + ([(0.0, round(1.5 * around))] if n <= 5 else []) + ([(0.0, 2 * around)] if n <= 3 else [])
+           + ([(0.0, 3 * around), (0.0, 4 * around)] if n == 2 else []))
     return (CONVERGENCE if n == 2 else ()) + tuple(out)
 
 
