@@ -1,35 +1,39 @@
 """The radiation stage against a boundary-element solution (issue 28; thesis sec. 5.1).
 
-    .venv/bin/python -m pipeline.bem_check [--modes 2 3] [--no-ground]
+    .venv/bin/python -m pipeline.bem_check [--modes 2 3] [--no-ground] [--solver revolution|3-D]
+        [--ground-order Q] [--default-case] [--convergence N ...] [--from-csv]
 
 For the default case's wheel (its radiation model, ``pipeline.radiate_stage.load_radiation_model``)
 and each (n,0,a) mode asked for: the section's outline revolved into a triangle mesh (element size
 <= lambda/6 around and along the outline, ``--ds-max`` at most along it; bore clamped: its
 velocity is the shapes' zero), the outward normal velocity of harmonic n for a unit (RMS) lateral
 and radial force at the contact point at the mode's eigenfrequency (``postprocess.wheel_bem``, the
-radiation stage's modal velocities), the exterior Helmholtz problem solved by bempp-cl
-(``solvers.bem``: Burton-Miller, P1), free field and over a rigid ground (an image wheel in the plane
-``--ground`` m below the contact point, the wheel's axis horizontal); the radiation stage's W_n at the
-same frequency and force beside it.  Writes docs/validation/72_bem_wheel.md and
-build/studies/bem/wheel.csv.  Cost: bempp's numba kernels compile once per process (~1-2 min per
-operator on a loaded machine); assembly grows with the square of the vertices.
+radiation stage's modal velocities), the exterior Helmholtz problem solved by bempp-cl (Burton-Miller,
+P1; ``solvers.bem_revolution`` by the mesh's rotational symmetry, or ``solvers.bem`` on the whole
+mesh), free field and over a rigid ground (an image wheel in the plane ``GROUND_BELOW_CONTACT`` below
+the contact point, the wheel's axis horizontal); the radiation stage's W_n at the same frequency and
+force beside it.  Each mode's rows are added to build/studies/bem/wheel.csv as they come
+(``pipeline.bem_table``: earlier rows kept, seeded from the fragment) and docs/validation/72_bem_wheel.md
+is rewritten from all of them.  Cost: bempp's numba kernels compile once per process (~1-2 min on a
+loaded machine); the 3-D assembly grows with the square of the vertices, the revolution solver's free
+field with (vertices along the outline) x (vertices), its ground with the square of the vertices.
 """
 from __future__ import annotations
 
 import argparse
-import csv
 import logging
 import math
+import os
 import time
 from pathlib import Path
 
 import numpy as np
 
 from . import paths
+from .bem_table import GROUND_BELOW_CONTACT
 
 log = logging.getLogger("pipeline.bem_check")
 ROOT = Path(__file__).resolve().parents[1]
-GROUND_BELOW_CONTACT = 0.16      # m: a rigid ground at about the BV50's foot (153 mm rail height + pad)
 
 
 def wheel_mesh(model, n: int, f: float, ds_max: float, n_phi: int | None = None):
@@ -47,7 +51,8 @@ def wheel_mesh(model, n: int, f: float, ds_max: float, n_phi: int | None = None)
     return V, T, phi, loop, outward_normals(rz)
 
 
-def wheel_rows(model, harmonics, ds_max: float, ground: float | None) -> list[dict]:
+def wheel_rows(model, harmonics, ds_max: float, ground: float | None, solver: str = "revolution",
+               ground_order: int | None = None, on_row=None) -> list[dict]:
     """Per (n,0,a) mode of ``harmonics`` and force direction: L_W of harmonic n by the radiation stage
     and by the BEM (free field, ground) at the mode's eigenfrequency, unit RMS force."""
     from postprocess.force_radiation import harmonic_power
@@ -58,25 +63,31 @@ def wheel_rows(model, harmonics, ds_max: float, ground: float | None) -> list[di
         i = [j for j in range(len(model.f_r)) if model.n[j] == n and model.m[j] == 0 and model.cls[j] == "a"][0]
         f = float(model.f_r[i])
         forces = ((1.0, 0.0), (0.0, 1.0))
-        free, gr, nv, t_free, t_gr = _powers(model, n, f, forces, ds_max, ground)
+        free, gr, nv, t_free, t_gr = _powers(model, n, f, forces, ds_max, ground, None, solver, ground_order)
         h = list(model.harmonics).index(n)
         for d, (F2, F3) in enumerate(forces):
             W_s = float(harmonic_power(model, f, F2, F3)[h, 0])
             rows.append({"mode": f"({n},0,a)", "f_hz": f, "force": ("lateral", "radial")[d], "vertices": nv,
+                         "solver": solver_label(solver, ground_order if ground is not None else None),
                          "L_W_simple": bem.level(W_s), "L_W_bem_free": bem.level(free[d]),
                          "L_W_bem_ground": bem.level(gr[d]) if np.isfinite(gr[d]) else np.nan,
                          "dL_free": bem.level(free[d]) - bem.level(W_s),
                          "dL_ground": bem.level(gr[d]) - bem.level(W_s) if np.isfinite(gr[d]) else np.nan,
-                         "wall_free_s": t_free, "wall_ground_s": t_gr})
+                         "wall_free_s": t_free, "wall_ground_s": t_gr, "load": _load()})
             log.info("%s", rows[-1])
+        if on_row is not None:
+            on_row(rows[-2:])
     return rows
 
 
-def _powers(model, n: int, f: float, forces, ds_max: float, ground: float | None, n_phi: int | None = None):
-    """BEM powers (free, ground) [W] of harmonic n at f for complex RMS force pairs ``forces``, and the
-    mesh's vertex count and wall times."""
+def _powers(model, n: int, f: float, forces, ds_max: float, ground: float | None, n_phi: int | None = None,
+            solver: str = "revolution", ground_order: int | None = None):
+    """BEM powers (free, ground) [W] of harmonic n at f for complex RMS force pairs ``forces``, the
+    mesh's vertex count and wall times: ``solver`` "revolution" (``solvers.bem_revolution``: the first
+    block row per harmonic, the ground by the mirror symmetry; ``ground_order`` its cross block's
+    quadrature order) or "3-D" (``solvers.bem``: the whole mesh, an image wheel for the ground)."""
     from postprocess.wheel_bem import normal_velocity
-    from solvers import bem
+    from solvers import bem, bem_revolution
 
     modes = model.meta["modes"]
     idx = model.groups[list(model.harmonics).index(n)]
@@ -85,45 +96,91 @@ def _powers(model, n: int, f: float, forces, ds_max: float, ground: float | None
                                           F2, F3, n)
            for F2, F3 in forces]
     k = 2 * np.pi * f / model.c0
+    plane = None if ground is None else -(float(model.meta["contact"].r) + ground)
+    gr, t_gr = [np.nan] * len(vns), np.nan
     t0 = time.perf_counter()
-    free = bem.radiated_power(bem.grid_from_arrays(V, T), k, vns, model.rho, model.c0)
-    t_free, gr, t_gr = time.perf_counter() - t0, [np.nan] * len(vns), np.nan
-    if ground is not None:
-        Vm, Tm = bem.mirrored(V, T, axis=0, plane=-(float(model.meta["contact"].r) + ground))
-        t0 = time.perf_counter()
-        gr = [0.5 * w for w in bem.radiated_power(bem.grid_from_arrays(Vm, Tm), k,
-                                                  [np.concatenate([v, v]) for v in vns], model.rho, model.c0)]
-        t_gr = time.perf_counter() - t0
+    if solver == "revolution":
+        rows = bem_revolution.first_block_row(V, T, len(loop), k)
+        free = bem_revolution.revolution_power(V, T, len(loop), k, vns, n, model.rho, model.c0, rows=rows)
+        t_free = time.perf_counter() - t0
+        if plane is not None:
+            t0 = time.perf_counter()
+            gr = bem_revolution.ground_power(V, T, len(loop), k, vns, 0, plane, model.rho, model.c0, rows=rows,
+                                             order=ground_order)
+            t_gr = time.perf_counter() - t0
+    else:
+        free = bem.radiated_power(bem.grid_from_arrays(V, T), k, vns, model.rho, model.c0)
+        t_free = time.perf_counter() - t0
+        if plane is not None:
+            Vm, Tm = bem.mirrored(V, T, axis=0, plane=plane)
+            t0 = time.perf_counter()
+            gr = [0.5 * w for w in bem.radiated_power(bem.grid_from_arrays(Vm, Tm), k,
+                                                      [np.concatenate([v, v]) for v in vns], model.rho, model.c0)]
+            t_gr = time.perf_counter() - t0
     return free, gr, len(V), t_free, t_gr
 
 
 CONVERGENCE = ((0.03, None), (0.03, 36), (0.015, 24), (0.015, 36), (0.03, 48), (0.015, 48))
 
 
-def convergence_rows(model, n: int = 2, done: list[dict] = ()) -> list[dict]:
-    """Mesh convergence of the free-field Delta L_W of (n,0,a) (unit lateral force): the element size
-    along the outline and the number of vertices around (``CONVERGENCE``); meshes in ``done`` (rows of
-    an earlier run) are kept, not recomputed."""
+def convergence_meshes(model, n: int):
+    """The meshes of the convergence check of (n,0,a) (element size along the outline, vertices around or
+    None for the lambda/6 rule): for (2,0,a) ``CONVERGENCE`` (as first measured, 3-D); then for every mode
+    the lambda/6 mesh, the element size along the outline halved and quartered (if above 6 mm), every
+    node of the FE section's outline (size 0: 228 nodes, about 5 mm apart) and, up to (5,0,a), that
+    outline with 1.5 x the vertices around (2 x up to (3,0,a); 3 x and 4 x for (2,0,a), whose 24 around
+    are the coarsest)."""
+    f = float(model.f_r[[j for j in range(len(model.f_r)) if model.n[j] == n and model.m[j] == 0
+                         and model.cls[j] == "a"][0]])
+    h = min(model.c0 / f / 6, 0.03)
+    V, _, _, loop, _ = wheel_mesh(model, n, f, 0.03)
+    around = len(V) // len(loop)
+    out = ([(0.03, None), (h / 2, None)] + ([(h / 4, None)] if h / 4 > 0.006 else []) + [(0.0, None)]
+           + ([(0.0, round(1.5 * around))] if n <= 5 else []) + ([(0.0, 2 * around)] if n <= 3 else [])
+           + ([(0.0, 3 * around), (0.0, 4 * around)] if n == 2 else []))
+    return (CONVERGENCE if n == 2 else ()) + tuple(out)
+
+
+def solver_label(solver: str, ground_order: int | None) -> str:
+    """The table's solver column: the solver, the cross block's quadrature order if not bempp's, and
+    bempp's backend if not numba."""
+    from solvers.bem import device
+
+    return (solver + ("" if ground_order is None else f", ground q{ground_order}")
+            + ("" if device() == "numba" else f", {device()}"))
+
+
+def _load() -> str:
+    return f"{os.getloadavg()[0]:.1f}"
+
+
+def convergence_rows(model, n: int = 2, meshes=CONVERGENCE, done: list[dict] = (), solver: str = "revolution") -> list[dict]:
+    """Mesh convergence of the free-field Delta L_W of (n,0,a) (unit lateral force): ``meshes`` = (element
+    size along the outline, vertices around or None for the lambda/6 rule); meshes in ``done`` (rows of
+    an earlier run, same solver) are kept, not recomputed."""
     from postprocess.force_radiation import harmonic_power
     from solvers import bem
 
     i = [j for j in range(len(model.f_r)) if model.n[j] == n and model.m[j] == 0 and model.cls[j] == "a"][0]
     f = float(model.f_r[i])
     W_s = float(harmonic_power(model, f, 1.0, 0.0)[list(model.harmonics).index(n), 0])
-    rows = list(done)
-    have = {(round(float(r["ds_max"]), 4), int(float(r["n_phi"]))) for r in rows}
-    for ds, n_phi in CONVERGENCE:
-        n_around = n_phi or len(wheel_mesh(model, n, f, ds)[2]) // len(wheel_mesh(model, n, f, ds)[3])
-        if (round(ds, 4), n_around) in have:
+    rows = []
+    base = lambda label: label.replace(", opencl", "")                                  # noqa: E731  (backends agree)
+    have = {(r["mode"], round(float(r["ds_max"]), 4), int(float(r["n_phi"])), base(r["solver"])) for r in done}
+    for ds, n_phi in meshes:
+        V, _, _, loop, _ = wheel_mesh(model, n, f, ds, n_phi)
+        n_around = len(V) // len(loop)
+        if (f"({n},0,a)", round(ds, 4), n_around, base(solver_label(solver, None))) in have:
             continue
-        free, _, nv, t_free, _ = _powers(model, n, f, [(1.0, 0.0)], ds, None, n_phi)
+        free, _, nv, t_free, _ = _powers(model, n, f, [(1.0, 0.0)], ds, None, n_phi, solver)
         rows.append({"mode": f"({n},0,a)", "ds_max": ds, "n_phi": n_around, "vertices": nv,
-                     "dL_free": bem.level(free[0]) - bem.level(W_s), "wall_s": t_free})
+                     "solver": solver_label(solver, None),
+                     "dL_free": bem.level(free[0]) - bem.level(W_s), "wall_s": t_free, "load": _load()})
         log.info("%s", rows[-1])
     return rows
 
 
-def default_case_row(model, ds_max: float, ground: float | None) -> dict:
+def default_case_row(model, ds_max: float, ground: float | None, solver: str = "revolution") -> dict:
     """The default case's L_W (its simulate.npz's final stretch, the radiation stage's
     ``sound_power_of_forces``) with the loudest tone's dominant harmonic replaced by the BEM's power of
     that harmonic under the tone's forces."""
@@ -141,89 +198,50 @@ def default_case_row(model, ds_max: float, ground: float | None) -> dict:
     n = int(s["harmonics"][h])
     ti = int(np.argmin(np.abs(d.tone_f - s["f"][j])))
     free, gr, nv, t_free, t_gr = _powers(model, n, float(d.tone_f[ti]), [(d.tone_F2[ti], d.tone_F3[ti])], ds_max,
-                                         ground)
+                                         ground, None, solver)
     W0, Wh = s["W_total"], float(s["W_n"][h, j])
     return {"mode": f"default case: tone {d.tone_f[ti]:.2f} Hz, n = {n}", "f_hz": float(d.tone_f[ti]),
-            "force": "limit cycle", "vertices": nv, "L_W_simple": bem.level(W0),
+            "force": "limit cycle", "vertices": nv, "solver": solver_label(solver, None), "L_W_simple": bem.level(W0),
             "L_W_bem_free": bem.level(W0 - Wh + free[0]),
             "L_W_bem_ground": bem.level(W0 - Wh + gr[0]) if np.isfinite(gr[0]) else np.nan,
             "dL_free": bem.level(W0 - Wh + free[0]) - bem.level(W0),
             "dL_ground": bem.level(W0 - Wh + gr[0]) - bem.level(W0) if np.isfinite(gr[0]) else np.nan,
-            "wall_free_s": t_free, "wall_ground_s": t_gr}
+            "wall_free_s": t_free, "wall_ground_s": t_gr, "load": _load()}
 
 
-def write(rows: list[dict], ground: float | None, ds_max: float) -> None:
+def write(rows: list[dict], ground: float | None, ds_max: float, conv_rows: list[dict] = (), plan=()) -> None:
+    """Merge ``rows`` / ``conv_rows`` into the CSV cache (seeded from the fragment) and rewrite the
+    fragment from the whole cache."""
+    from . import bem_table as bt
     from .atomic import atomic_write
 
     out = paths.build() / "studies" / "bem"
-    out.mkdir(parents=True, exist_ok=True)
-    if (out / "wheel.csv").exists():          # rows of earlier runs (other modes) stay
-        with open(out / "wheel.csv", newline="") as fh:
-            old = [{k: (v if k in ("mode", "force") else float(v)) for k, v in r.items()} for r in csv.DictReader(fh)]
-        new = {(r["mode"], r["force"]) for r in rows}
-        rows = sorted([r for r in old if (r["mode"], r["force"]) not in new] + rows,
-                      key=lambda r: (r["mode"].startswith("default"), r["mode"], r["force"]))
-    if not rows:
+    frag = ROOT / "docs" / "validation" / "72_bem_wheel.md"
+    wheel, conv = bt.cached(out, frag)
+    wheel, conv = bt.merge_wheel(wheel, list(rows)), bt.merge_conv(conv, list(conv_rows))
+    if not wheel:
         raise SystemExit("no rows: run `python -m pipeline.bem_check` first")
-    with atomic_write(out / "wheel.csv") as tmp, open(tmp, "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
-    lines = ["| mode | f (Hz) | force | vertices (wheel) | L_W simple (dB) | BEM free | BEM + ground | "
-             "Delta free (dB) | Delta ground (dB) | wall free / ground (s) |", "|" + "---|" * 10]
-    for r in rows:
-        lines.append(f"| {r['mode']} | {r['f_hz']:.1f} | {r['force']} | {int(r['vertices'])} | {r['L_W_simple']:.1f} | "
-                     f"{r['L_W_bem_free']:.1f} | {r['L_W_bem_ground']:.1f} | {r['dL_free']:+.1f} | "
-                     f"{r['dL_ground']:+.1f} | {r['wall_free_s']:.0f} / {r['wall_ground_s']:.0f} |")
-    table = "\n".join(lines)
-    modes_ = [r for r in rows if not r["mode"].startswith("default")]
-    dfree = [r["dL_free"] for r in modes_]
-    dgr = [r["dL_ground"] for r in modes_ if np.isfinite(r["dL_ground"])]
-    summary = (f"Delta L_W per (n,0,a) mode and unit force: free field {min(dfree):+.1f} to {max(dfree):+.1f} dB"
-               + (f", over the ground {min(dgr):+.1f} to {max(dgr):+.1f} dB" if dgr else "")
-               + f". In free field the simple model is within {max(abs(d) for d in dfree):.1f} dB of the BEM and "
-               + ("higher, as the reference's was (0.5 to 4 dB)" if max(dfree) < 0 else
-                  "not systematically higher as the reference's was (it found the simple model 0.5 to 4 dB above)")
-               + "; the ground's reflection adds the difference between the two Delta columns (the radiation "
-               "stage has no ground). Lateral and radial forces give the same Delta at the eigenfrequency, where "
-               "the (n,0,a) mode dominates the velocity field whichever force drives it." if modes_ else "")
-    text = f"""## The radiation stage against a boundary-element solution: the wheel (issue 28)
-
-Script: `python -m pipeline.bem_check` (bempp-cl, Burton-Miller, P1; checked on the spheres above).
-The default case's wheel: the FE section's outline revolved (element size <= lambda/6 around, <= min(lambda/6,
-{ds_max * 1e3:.0f} mm) along the outline, corners kept), the outward normal velocity of harmonic n for a unit RMS
-lateral or radial force at the contact point at the (n,0,a) eigenfrequency, from the radiation stage's modal
-velocities; bore clamped (zero velocity). Ground: rigid, {'' if ground is None else f'{ground * 1e3:.0f} mm'} below
-the contact point (an image wheel; the wheel's axis horizontal, the contact at the bottom). Delta = L_W(BEM) -
-L_W(radiation stage) for harmonic n. The reference (thesis sec. 5.1) found 0.5 to 4 dB with the simple model
-higher, i.e. Delta between -4 and -0.5 dB. Wall times on a shared 2-core machine (load 4-10 during these runs), numba backend,
-including bempp's compilation in the first row.
-
-{table}
-
-{summary}
-"""
-    conv = ""
-    if (out / "convergence.csv").exists():
-        with open(out / "convergence.csv", newline="") as fh:
-            cr = list(csv.DictReader(fh))
-        conv = ("Mesh convergence of (2,0,a), unit lateral force, free field (`--convergence`):\n\n"
-                "| element size along the outline (mm) | vertices around | vertices | Delta free (dB) | wall (s) |\n"
-                "|---|---|---|---|---|\n" + "\n".join(
-                    f"| {1e3 * float(r['ds_max']):.0f} | {r['n_phi']} | {r['vertices']} | {float(r['dL_free']):+.2f} | "
-                    f"{float(r['wall_s']):.0f} |" for r in cr) + "\n")
-        d = [float(r["dL_free"]) for r in cr]
-        fine = max(cr, key=lambda r: int(float(r["vertices"])))
-        coarse = min(cr, key=lambda r: int(float(r["vertices"])))
-        conv += (f"\nDelta moves by {max(d) - min(d):.2f} dB over these meshes, to {float(fine['dL_free']):+.2f} dB on the "
-                 f"finest ({fine['vertices']} vertices): the mode's radiation is a near-field cancellation between the "
-                 f"faces and needs both directions resolved; the per-mode table above (coarsest meshes, the "
-                 f"lambda/6 rule) is uncertain by that much"
-                 + (", and the refinement moves the BEM further ABOVE the simple model for (2,0,a), away from the "
-                    "reference's finding.\n" if float(fine["dL_free"]) > float(coarse["dL_free"]) else ".\n"))
-        text += "\n" + conv
-    with atomic_write(ROOT / "docs" / "validation" / "72_bem_wheel.md") as tmp:
+    bt.write_csv(out / "wheel.csv", wheel, bt.WHEEL_KEYS)
+    if conv:
+        bt.write_csv(out / "convergence.csv", conv, bt.CONV_KEYS)
+    text = bt.fragment_text(wheel, conv, ds_max, plan)
+    with atomic_write(frag) as tmp:
         tmp.write_text(text)
+
+
+def plan_rows(model, ds_max: float) -> list[dict]:
+    """Every (n,0,a) mode in the radiation stage's range: frequency, the lambda/6 mesh (vertices, along
+    x around) and the memory of one dense complex matrix of the 3-D solve (free field; 4x with the
+    image wheel)."""
+    rows = []
+    for j in np.argsort(model.f_r):
+        if model.m[j] != 0 or model.cls[j] != "a" or int(model.n[j]) < 2:
+            continue
+        n, f = int(model.n[j]), float(model.f_r[j])
+        V, _, _, loop, _ = wheel_mesh(model, n, f, ds_max)
+        rows.append({"mode": f"({n},0,a)", "f_hz": f, "vertices": len(V), "along": len(loop),
+                     "around": len(V) // len(loop), "dense_gb": 16 * len(V) ** 2 / 1e9})
+    return rows
 
 
 def main(argv=None) -> int:
@@ -233,32 +251,52 @@ def main(argv=None) -> int:
     ap.add_argument("--modes", type=int, nargs="*", default=[2, 3], help="harmonics n of the (n,0,a) modes")
     ap.add_argument("--ds-max", type=float, default=0.03, help="largest element size along the outline (m)")
     ap.add_argument("--no-ground", action="store_true", help="free field only")
+    ap.add_argument("--solver", choices=("revolution", "3-D"), default="revolution",
+                    help="revolution: the symmetric solver (default); 3-D: the whole mesh")
+    ap.add_argument("--ground-order", type=int, default=None,
+                    help="quadrature order of the image wheel's (non-singular) cross block (default bempp's 4)")
+    ap.add_argument("--device", choices=("numba", "opencl"), default="numba",
+                    help="bempp-cl's backend (opencl: needs pyopencl and an OpenCL CPU driver, e.g. pocl)")
     ap.add_argument("--default-case", action="store_true", help="also the default case's limit cycle")
-    ap.add_argument("--convergence", action="store_true", help="only the mesh convergence of (2,0,a) (free field)")
-    ap.add_argument("--from-csv", action="store_true", help="only rewrite the fragment from build/studies/bem/wheel.csv")
+    ap.add_argument("--convergence", type=int, nargs="*", default=None,
+                    help="only the mesh convergence of these (n,0,a) modes (free field; none given: 2)")
+    ap.add_argument("--from-csv", action="store_true", help="only rewrite the fragment from build/studies/bem/*.csv")
     a = ap.parse_args(argv)
     logging.basicConfig(level=logging.INFO, format="%(levelname)s %(name)s: %(message)s")
     ground = None if a.no_ground else GROUND_BELOW_CONTACT
-    if a.from_csv:
-        write([], ground, a.ds_max)
-        return 0
-    if a.convergence:
-        from .study.limit_cycle import save_csv
+    if not a.from_csv:
+        from solvers.bem import use_device
 
-        path = paths.build() / "studies" / "bem" / "convergence.csv"
-        done = []
-        if path.exists():
-            with open(path, newline="") as fh:
-                done = list(csv.DictReader(fh))
-        save_csv(path, convergence_rows(load_radiation_model("default"), done=done))
-        write([], ground, a.ds_max)
-        return 0
+        try:
+            use_device(a.device)
+        except ValueError as e:
+            raise SystemExit(f"pipeline.bem_check: {e}") from None
     model = load_radiation_model("default")
-    rows = wheel_rows(model, a.modes, a.ds_max, ground)
+    have = sorted({int(model.n[j]) for j in range(len(model.f_r)) if model.m[j] == 0 and model.cls[j] == "a"})
+    bad = [n for n in (a.modes or []) + (a.convergence or []) if n not in have]
+    if bad:
+        raise SystemExit(f"pipeline.bem_check: --modes/--convergence {bad}: the wheel's (n,0,a) modes are n = {have}")
+    if a.from_csv:
+        write([], ground, a.ds_max, plan=plan_rows(model, a.ds_max))
+        return 0
+    if a.convergence is not None:
+        from . import bem_table as bt
+
+        done = bt.cached(paths.build() / "studies" / "bem", ROOT / "docs" / "validation" / "72_bem_wheel.md")[1]
+        plan = plan_rows(model, a.ds_max)
+        for n in a.convergence or [2]:
+            for mesh in convergence_meshes(model, n):                   # one row at a time, each written
+                rows = convergence_rows(model, n, [mesh], done, a.solver)
+                done = done + rows
+                write([], ground, a.ds_max, rows, plan)
+        return 0
+    plan = plan_rows(model, a.ds_max)
+    rows = wheel_rows(model, a.modes, a.ds_max, ground, a.solver, a.ground_order,
+                      on_row=lambda r: write(r, ground, a.ds_max, plan=plan))
     if a.default_case:
-        rows.append(default_case_row(model, a.ds_max, ground))
+        rows.append(default_case_row(model, a.ds_max, ground, a.solver))
         log.info("%s", rows[-1])
-    write(rows, ground, a.ds_max)
+        write(rows[-1:], ground, a.ds_max, plan=plan)
     return 0
 
 

@@ -32,6 +32,22 @@ def _api():
     return api
 
 
+def use_device(name: str) -> None:
+    """bempp-cl's backend for the operators assembled from now on: "numba" (always there) or "opencl"
+    (needs pyopencl and an OpenCL CPU driver such as pocl; bempp picks it by default when present)."""
+    api = _api()
+    if name not in ("numba", "opencl"):
+        raise ValueError(f"bempp device {name!r}: 'numba' or 'opencl'")
+    if name == "opencl" and not api.CPU_OPENCL_DRIVER_FOUND:
+        raise ValueError("bempp device 'opencl': no OpenCL CPU driver found (pyopencl and pocl)")
+    api.DEFAULT_DEVICE_INTERFACE = name
+
+
+def device() -> str:
+    """bempp-cl's backend in use ("numba" or "opencl")."""
+    return _api().DEFAULT_DEVICE_INTERFACE
+
+
 def grid_from_arrays(vertices: np.ndarray, triangles: np.ndarray):
     """A bempp grid from vertices (N, 3) and triangles (T, 3) (counter-clockwise seen from outside)."""
     return _api().Grid(np.ascontiguousarray(np.asarray(vertices, float).T),
@@ -49,29 +65,35 @@ def mirrored(vertices: np.ndarray, triangles: np.ndarray, axis: int = 2, plane: 
     return np.vstack([v, vi]), np.vstack([t, t[:, ::-1] + len(v)])
 
 
+def _weak_forms(grid, k: float, test=None):
+    """Galerkin matrices of the Burton-Miller equation on ``grid`` (P1 trial functions, test functions
+    ``test``: P1 on the whole grid by default): dense left-hand side A, right-hand side B (acting on
+    q = dp/dn) and the sparse mass matrix M, rows = the test space's dofs."""
+    api = _api()
+    space = api.function_space(grid, "P", 1)
+    test = space if test is None else test
+    hz = api.operators.boundary.helmholtz
+    ident = api.operators.boundary.sparse.identity(space, space, test)
+    V = hz.single_layer(space, space, test, k)
+    K = hz.double_layer(space, space, test, k)
+    Kp = hz.adjoint_double_layer(space, space, test, k)
+    W = hz.hypersingular(space, space, test, k)
+    eta = 1j / k
+    A = np.asarray((0.5 * ident - K + eta * W).weak_form().A)
+    B = np.asarray((V + eta * (0.5 * ident + Kp)).weak_form().A)
+    return A, B, ident.weak_form().A
+
+
 def radiated_power(grid, k: float, vns, rho: float = 1.21, c: float = 343.0) -> list[float]:
     """Radiated power [W] of the body ``grid`` vibrating with each outward normal velocity amplitude
     field of ``vns`` (complex, per vertex (P1 coefficients), m/s) at wavenumber k [1/m]: the
     Burton-Miller equation above (operators assembled once for all fields), solved by dense LU."""
-    api = _api()
-    space = api.function_space(grid, "P", 1)
-    omega = k * c
-    hz = api.operators.boundary.helmholtz
-    ident = api.operators.boundary.sparse.identity(space, space, space)
-    V = hz.single_layer(space, space, space, k)
-    K = hz.double_layer(space, space, space, k)
-    Kp = hz.adjoint_double_layer(space, space, space, k)
-    W = hz.hypersingular(space, space, space, k)
-    eta = 1j / k
-    # Galerkin (P1 test functions): dense LU of the left-hand side's weak form, one solve per field
-    A = np.asarray((0.5 * ident - K + eta * W).weak_form().A)
-    B = np.asarray((V + eta * (0.5 * ident + Kp)).weak_form().A)
-    M = ident.weak_form().A
+    A, B, M = _weak_forms(grid, k)
     lu = lu_factor(A)
     out = []
     for vn in vns:
         vn = np.asarray(vn, complex)
-        p = lu_solve(lu, -(B @ (1j * omega * rho * vn)))
+        p = lu_solve(lu, -(B @ (1j * k * c * rho * vn)))
         out.append(0.5 * float(np.real(np.conj(vn) @ (M @ p))))
     return out
 
