@@ -88,10 +88,6 @@ def _kernel_sum(K, A, coef, step, n_k, n_t, eps):
     zr = np.empty(M)
     zi = np.empty(M)
     length = np.empty(M, np.int64)
-    th = 2.0 * math.pi / n_t
-    cos_t = np.empty(n_t)                         # cos(2 pi j / N_t), the same expression per j as before
-    for j in range(n_t):
-        cos_t[j] = math.cos(th * j)
     for m in range(nf):
         # active length of every wave: |a| |z|^L / (1 - |z|) < eps from L on
         for n in range(M):
@@ -153,14 +149,11 @@ def _kernel_sum(K, A, coef, step, n_k, n_t, eps):
                 s[k, 3] = s3
             k0 = k1
         cm = coef[m]
-        j = 0                                     # j = (k m) mod N_t, stepped instead of divided
+        th = 2.0 * math.pi / n_t
         for k in range(n_k):
-            ck = cm * cos_t[j]
+            ck = cm * math.cos(th * ((k * m) % n_t))
             for c in range(4):
                 g[k, c] += ck * s[k, c]
-            j += m
-            while j >= n_t:
-                j -= n_t
     return g
 
 

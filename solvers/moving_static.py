@@ -29,36 +29,19 @@ def static_kernel(k_static: np.ndarray, a_static: np.ndarray, taper: np.ndarray,
     on Kropp's grid f_m = m / (N_t dt), m = 0..nf-1, with the receptance's taper w_m (nf,): the
     weights of ``moving_kernel.moving_green_waves`` (c_m = 2 w / N_t, w = 2, 1 at m = 0 and at
     N_t/2; lag 0 halved)."""
+    nf, n_t = len(taper), int(n_t)
+    w = np.full(nf, 2.0)
+    w[0] = 1.0
+    if nf == n_t // 2 + 1:
+        w[-1] = 1.0
     lags = np.arange(int(n_k))
-    C = _lag_weights(np.asarray(taper, float), int(n_k), int(n_t))
+    m = np.arange(nf)
+    C = np.empty(len(lags))
+    cm = 2.0 * w / n_t * np.asarray(taper, float)
+    for s in range(0, len(lags), 512):
+        kk = lags[s:s + 512]
+        C[s:s + 512] = np.cos(2 * np.pi * ((np.outer(kk, m)) % n_t) / n_t) @ cm
     z = np.exp(-1j * np.outer(lags, k_static) * (float(v) * float(dt)))          # (n_k, S)
     g = np.einsum("ks,sij->kij", z, np.asarray(a_static, complex)).real * C[:, None, None]
     g[0] *= 0.5
     return g
-
-
-_C: dict = {}
-
-
-def _lag_weights(taper: np.ndarray, n_k: int, n_t: int) -> np.ndarray:
-    """C[k] = sum_m c_m w_m cos(2 pi m k / N_t) (module notes): the same for every point and speed of
-    a rail's grid, so kept per (taper, n_k, N_t) in the process (a line study builds hundreds of
-    kernels on one grid)."""
-    key = (taper.tobytes(), n_k, n_t)
-    if key not in _C:
-        nf = len(taper)
-        w = np.full(nf, 2.0)
-        w[0] = 1.0
-        if nf == n_t // 2 + 1:
-            w[-1] = 1.0
-        lags, m = np.arange(n_k), np.arange(nf)
-        C = np.empty(n_k)
-        cm = 2.0 * w / n_t * taper
-        for s in range(0, n_k, 512):
-            kk = lags[s:s + 512]
-            C[s:s + 512] = np.cos(2 * np.pi * ((np.outer(kk, m)) % n_t) / n_t) @ cm
-        C.flags.writeable = False
-        if len(_C) >= 4:
-            _C.pop(next(iter(_C)))
-        _C[key] = C
-    return _C[key]
