@@ -62,6 +62,8 @@ def rail_kernel(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, grid:
     """The rail arrays of the greens artifact at y_r (signed), from the cache or built and
     cached; returns (arrays, loaded_from_cache).  rail_hash: the rail parameters' (rail.npz's) configuration
     hash; ``taper(f)`` rolls the receptance off."""
+    from solvers.moving_kernel import mirror
+
     from .rail_stage import rail_mesh
 
     rail_mesh(pr)                                   # section.msh, as the rail stage beside it makes it
@@ -78,19 +80,11 @@ def rail_kernel(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, grid:
         log.info("rail moving kernel at |y^R| = %.1f mm: not in the cache, building it", 1e3 * abs(float(y_r)))
         arrays = build_kernel(pr, abs(float(y_r)), v, dt, grid, taper)
         artifacts.save_npz(path, KIND, cfg, **arrays)
-    arrays = side(arrays, y_r)
+    if y_r < 0:
+        arrays = dict(arrays)
+        for key in ("rail_kernel", "rail_fixed_kernel", "rail_point_receptance"):
+            arrays[key] = mirror(arrays[key])
     return arrays, cached
-
-
-def side(arrays: dict, y_r: float) -> dict:
-    """The kernel file's arrays (built at |y^R|) at the signed point y_r: g23 and g32 negated on the
-    head's other side (``solvers.moving_kernel.mirror``)."""
-    from solvers.moving_kernel import mirror
-
-    if y_r >= 0:
-        return arrays
-    return dict(arrays) | {key: mirror(arrays[key]) for key in ("rail_kernel", "rail_fixed_kernel",
-                                                                "rail_point_receptance")}
 
 
 def wave_table_threads(model, freqs, y: float, workers: int = 2) -> dict:

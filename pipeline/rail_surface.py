@@ -128,7 +128,9 @@ def surface_kernel(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, gr
     """The rail arrays of the greens artifact at any head point y_r (signed), as
     ``rail_kernel.rail_kernel`` gives them at a listed point: from the moving-kernel cache, or
     built from the surface table and cached; returns (arrays, loaded_from_cache)."""
-    from .rail_kernel import kernel_config, kernel_path, side
+    from solvers.moving_kernel import mirror
+
+    from .rail_kernel import kernel_config, kernel_path
     from .rail_stage import rail_mesh
 
     rail_mesh(pr)
@@ -147,14 +149,17 @@ def surface_kernel(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, gr
         log.info("rail moving kernel at |y^R| = %.2f mm from the surface table: waves %.1f s, kernel %.1f s",
                  1e3 * abs(y_r), t1 - t0, time.perf_counter() - t1)
         cached = False
-    arrays = side(arrays, y_r)
+    if y_r < 0:
+        arrays = dict(arrays)
+        for key in ("rail_kernel", "rail_fixed_kernel", "rail_point_receptance"):
+            arrays[key] = mirror(arrays[key])
     return arrays, cached
 
 
 def kernel_from_waves(k: np.ndarray, a: np.ndarray, v: float, dt: float, grid: dict, taper) -> dict:
     """The moving kernel, the fixed-point kernel, its decay, the tail ratio and the point receptance
     of a wave table (k, a) on Kropp's grid below f_taper: ``rail_kernel.build_kernel``'s arrays."""
-    from solvers.green import frequency_grid
+    from solvers.green import decayed, frequency_grid, green_from_receptance
     from solvers.moving_kernel import moving_green_waves
     from solvers.moving_static import static_kernel, static_waves
 
@@ -166,17 +171,7 @@ def kernel_from_waves(k: np.ndarray, a: np.ndarray, v: float, dt: float, grid: d
     fixed = static_waves(k)   # the subtracted static near field: the same at every frequency, summed once
     g = moving_green_waves(k[:, ~fixed], at[:, ~fixed], v, dt, n_lags, n_t, tol=KERNEL_TOL) + \
         static_kernel(k[0, fixed], a[0, fixed], w, v, dt, n_lags, n_t)
-    return kernel_arrays(g, at, inside, dt, n_t, n_lags, a.sum(axis=1))
-
-
-def kernel_arrays(g: np.ndarray, at: np.ndarray, inside: np.ndarray, dt: float, n_t: int, n_lags: int,
-                  receptance: np.ndarray) -> dict:
-    """The kernel file's arrays around the moving kernel g: the fixed-point kernel of the tapered waves
-    ``at`` (on Kropp's grid where ``inside``), its decay (refused when it has not decayed), the
-    kernel's tail ratio and the point receptance."""
-    from solvers.green import decayed, green_from_receptance
-
-    G0 = np.zeros((len(inside), 2, 2), complex)
+    G0 = np.zeros((len(f), 2, 2), complex)
     G0[inside] = at.sum(axis=1)
     g0 = green_from_receptance(G0, dt, n_t)
     check = decayed(g0)
@@ -184,4 +179,5 @@ def kernel_arrays(g: np.ndarray, at: np.ndarray, inside: np.ndarray, dt: float, 
         raise RuntimeError(f"rail Green's function has not decayed by N_t/2 dt ({check.level_db:.0f} dB)")
     tail = np.abs(g[-n_lags // 8:]).max() / np.abs(g).max()
     return {"rail_kernel": g, "rail_fixed_kernel": g0[:n_lags], "rail_decay_db": np.float64(check.level_db),
-            "rail_tail_ratio": np.float64(tail), "rail_nt": np.int64(n_t), "rail_point_receptance": receptance}
+            "rail_tail_ratio": np.float64(tail), "rail_nt": np.int64(n_t),
+            "rail_point_receptance": a.sum(axis=1)}

@@ -71,10 +71,8 @@ def point_table(pr: dict, rail_hash: str, y_r: float, dt: float, grid: dict) -> 
 
 def kernel_from_table(T: dict, v: float, dt: float, grid: dict, taper) -> dict:
     """``rail_kernel.build_kernel``'s arrays from the point's wave table (the same calls after the table)."""
-    from solvers.green import frequency_grid
+    from solvers.green import decayed, frequency_grid, green_from_receptance
     from solvers.moving_kernel import moving_green_waves
-
-    from ..rail_surface import kernel_arrays
 
     n_t, n_lags = int(grid["n_t"]), int(grid["n_lags"])
     f = frequency_grid(dt, n_t)
@@ -82,13 +80,23 @@ def kernel_from_table(T: dict, v: float, dt: float, grid: dict, taper) -> dict:
     w = taper(f[inside])
     a = T["a"] * w[:, None, None, None]
     g = moving_green_waves(T["k"], a, v, dt, n_lags, n_t)
-    return kernel_arrays(g, a, inside, dt, n_t, n_lags, T["a"].sum(axis=1))
+    G0 = np.zeros((len(f), 2, 2), complex)
+    G0[inside] = a.sum(axis=1)
+    g0 = green_from_receptance(G0, dt, n_t)
+    check = decayed(g0)
+    if not check.ok:
+        raise RuntimeError(f"rail Green's function has not decayed by N_t/2 dt ({check.level_db:.0f} dB)")
+    tail = np.abs(g[-n_lags // 8:]).max() / np.abs(g).max()
+    return {"rail_kernel": g, "rail_fixed_kernel": g0[:n_lags], "rail_decay_db": np.float64(check.level_db),
+            "rail_tail_ratio": np.float64(tail), "rail_nt": np.int64(n_t), "rail_point_receptance": T["a"].sum(axis=1)}
 
 
 def listed_kernel(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, grid: dict, taper) -> dict:
     """The rail arrays at the listed point y_r (signed) as ``rail_kernel.rail_kernel`` returns them: from
     the moving-kernel cache, or built from the cached wave table and stored there."""
-    from ..rail_kernel import KIND, kernel_config, kernel_path, side
+    from solvers.moving_kernel import mirror
+
+    from ..rail_kernel import KIND, kernel_config, kernel_path
     from ..rail_stage import rail_mesh
 
     rail_mesh(pr)
@@ -99,7 +107,10 @@ def listed_kernel(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, gri
     except artifacts.ArtifactError:
         arrays = kernel_from_table(point_table(pr, rail_hash, abs(float(y_r)), dt, grid), v, dt, grid, taper)
         artifacts.save_npz(path, KIND, cfg, **arrays)
-    arrays = side(arrays, y_r)
+    if y_r < 0:
+        arrays = dict(arrays)
+        for key in ("rail_kernel", "rail_fixed_kernel", "rail_point_receptance"):
+            arrays[key] = mirror(arrays[key])
     return arrays
 
 
@@ -122,10 +133,11 @@ def surface_arrays(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, gr
     """``rail_surface.surface_kernel``'s arrays at a point off the listed ones, with the surface table's
     files (its waves and the node shapes) held in memory per process: the same calls on the same arrays
     (bit for bit).  None when the surface table is not built yet (``surface_kernel`` builds it)."""
+    from solvers.moving_kernel import mirror
     from solvers.rail_surface import point_amplitudes, point_weights
 
     from ..code_hash import code_hash
-    from ..rail_kernel import kernel_config, kernel_path, side
+    from ..rail_kernel import kernel_config, kernel_path
     from ..rail_stage import rail_mesh
     from ..rail_surface import KERNEL_CODE, KIND_KERNEL, KIND_NODE, KIND_WAVES, kernel_from_waves, table_config
     from ..rail_surface import table_dir
@@ -146,7 +158,10 @@ def surface_arrays(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, gr
         psi = np.stack([_held(folder / f"node_{i}.npz", KIND_NODE, tcfg, "psi") for i in idx], axis=2)
         arrays = kernel_from_waves(w["k"], point_amplitudes(psi, np.arange(3), N), v, dt, grid, taper)
         artifacts.save_npz(path, KIND_KERNEL, cfg, **arrays)
-    arrays = side(arrays, y_r)
+    if y_r < 0:
+        arrays = dict(arrays)
+        for key in ("rail_kernel", "rail_fixed_kernel", "rail_point_receptance"):
+            arrays[key] = mirror(arrays[key])
     return arrays
 
 

@@ -35,6 +35,7 @@ import time
 import numpy as np
 
 from .. import artifacts, paths
+from .operating import curve_info, wheel_points
 
 log = logging.getLogger("pipeline.verdict")
 
@@ -192,11 +193,16 @@ def run_screen_first(curve: str, *, what_ifs: bool = False, write: bool = True, 
     ``figures``: the stages of a squealing wheel draw their figures (``without_figures`` otherwise)."""
     from solvers.study import squeals
 
+    from .cases import wheel_case, write_case
     from .report import cell
-    from .stage import COLUMNS, curve_cases, wheel_verdict
+    from .stage import COLUMNS, solve, wheel_verdict
 
     t0 = time.perf_counter()
-    _, info, points, _ = curve_cases(curve)
+    sol = solve(curve)
+    info, points = curve_info(curve, sol), wheel_points(sol)
+    cases = [wheel_case(info, p) for p in points]      # every operating point checked before any work
+    for c in cases:
+        write_case(c)
     t0 = _tick("curving", t0)
     rows = []
     for p in points:

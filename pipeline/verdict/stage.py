@@ -138,25 +138,17 @@ def wheel_verdict(info: CurveInfo, p: WheelPoint, *, what_ifs: bool = True) -> d
     return row
 
 
-def curve_cases(curve: str) -> tuple:
-    """(the steady-curving solution, CurveInfo, the wheels' operating points, their case dicts) of
-    ``curve``, every wheel's case file written (every operating point checked before any work)."""
-    from .cases import wheel_case, write_case
-
-    sol = solve(curve)
-    info, points = curve_info(curve, sol), wheel_points(sol)
-    cases = [wheel_case(info, p) for p in points]
-    for c in cases:
-        write_case(c)
-    return sol, info, points, cases
-
-
 def run_curve(curve: str, *, progress_bar: bool = True, what_ifs: bool = True) -> dict:
     """The verdict of ``curve`` (module notes).  Returns {'rows', 'info', 'paths'}."""
     from . import plot, report
+    from .cases import wheel_case, write_case
 
     t0 = time.perf_counter()
-    sol, info, points, cases = curve_cases(curve)
+    sol = solve(curve)
+    info, points = curve_info(curve, sol), wheel_points(sol)
+    cases = [wheel_case(info, p) for p in points]         # every operating point checked before any work
+    for c in cases:
+        write_case(c)
     rows = []
     for p in progress(points, enabled=progress_bar, desc=f"curve {curve}", unit="wheel"):
         rows.append(wheel_verdict(info, p, what_ifs=what_ifs))
