@@ -185,8 +185,5 @@ asks for the same contact ~4 times in 5: 3x faster curving, the same numbers); t
 in memory (no wheel kernel, no files or figures for a stable wheel); a listed rail point's wave table
 cached (a new speed: ~1 s instead of ~15 s); the running surface's table files held per worker; the rail
 kernels' decay check reading each kernel file once per process (it read every kernel of the rail for every
-case: quadratic in a line's length). Then the moving kernel itself (283 of them in the run, the largest
-cost): each frequency's cosines from one table stepped by m instead of a cos per lag, and the static part's
-lag weights kept per grid (the same kernels, bit for bit; the default case's numbers unchanged): 0.82 ->
-0.68 s per kernel, and this run's 312 s -> 265 s (measured one after the other on the quiet machine).
+case: quadratic in a line's length).
 """
