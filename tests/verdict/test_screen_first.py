@@ -52,8 +52,8 @@ def test_listed_point_kernel_is_build_kernels():
 
 def test_screen_first_equals_the_curve_stage():
     """r300 (the metro at 300 m, mu = 0.35): the curve stage screens and runs the time loop for all four
-    wheels; screen first, the same screen numbers, and the one wheel the screen finds unstable (a2o) run
-    in the time loop with the same L_F2; the others not run."""
+    wheels; screen first, the same screen numbers, and the wheels the screen finds unstable (a2o; a1o
+    with some kernels' last digits) run in the time loop with the same L_F2; the others not run."""
     from pipeline.verdict.screen_first import run_screen_first
     from pipeline.verdict.stage import run_curve
 
@@ -71,4 +71,9 @@ def test_screen_first_equals_the_curve_stage():
             assert r["L_F2"] == pytest.approx(f["L_F2"], abs=1e-9)
         else:
             assert math.isnan(r["L_F2"]) and f["L_F2"] < 10.0      # the curve stage's time loop: quiet too
-    assert [w for w, r in first.items() if r["time_loop"]] == ["a2o"]
+    # a2o's pole is found whatever the build's history.  a1o's (5,0,a) pole near 3.1 kHz (an over-radial
+    # wheel, quiet in the time loop) is found or not with the last digits of its rail kernel (a 2e-8
+    # relative change of the kernel flips it; which test first built the kernel file decides them in a
+    # whole run): both paths read the same file, so they agree either way (asserted above).
+    ran = [w for w, r in first.items() if r["time_loop"]]
+    assert "a2o" in ran and set(ran) <= {"a1o", "a2o"}, ran
