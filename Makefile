@@ -14,7 +14,7 @@ STAMP := .venv/.setup-stamp
 # rest (studies, listening, tests: requirements.txt, which includes both; `make` alone never waits for it)
 CORE   ?= $(dir $(STAMP)).core-stamp
 RENDER ?= $(dir $(STAMP)).render-stamp
-# pipeline/deps.py uses the standard library only: it runs before the venv exists
+# pipeline/store/deps.py uses the standard library only: it runs before the venv exists
 DEPS_PY := $(firstword $(wildcard $(PY)) /usr/bin/python3)
 # a case is a file pipeline/cases/<CASE>.toml, or a curve's wheel CASE=<curve>/<wheel> (e.g. r150/a1i), whose
 # case file the curve stage writes to $(BUILD)/curves/<curve>/cases/<wheel>.toml (artifacts in $(BUILD)/cases/<curve>/<wheel>/)
@@ -23,7 +23,7 @@ CASE_FILE = $(if $(findstring /,$(1)),$(BUILD)/curves/$(call CURVE_OF,$(1))/case
 CFILE := $(call CASE_FILE,$(CASE))
 # the wheel and rail come from the case file (its keys `wheel`, `rail`): WHEEL=/RAIL= only for
 # the wheel and rail stages alone, and an error when they disagree with a case target's case
-CASE_INPUTS := $(shell $(DEPS_PY) pipeline/deps.py --case $(CFILE) 2>&1)
+CASE_INPUTS := $(shell $(DEPS_PY) pipeline/store/deps.py --case $(CFILE) 2>&1)
 CASE_OK     := $(filter 0,$(.SHELLSTATUS))
 WHEEL ?= $(if $(CASE_OK),$(word 1,$(CASE_INPUTS)),c20)
 RAIL  ?= $(if $(CASE_OK),$(word 2,$(CASE_INPUTS)),bv50)
@@ -54,7 +54,7 @@ export OMP_NUM_THREADS ?= 1
 unexport PYTHONDONTWRITEBYTECODE
 
 # Each stage's sources, DEPS_<stage>: the repository files its code reaches, computed from the
-# imports by pipeline/deps.py into $(BUILD)/deps.mk, regenerated when a package's .py changes.
+# imports by pipeline/store/deps.py into $(BUILD)/deps.mk, regenerated when a package's .py changes.
 DEPS_MK  := $(BUILD)/deps.mk
 # the running-surface profiles: data the contact point of every case stage comes from
 PROFILES := $(wildcard geometry/profiles/*.csv)
@@ -64,7 +64,7 @@ include $(DEPS_MK)
 endif
 $(DEPS_MK): $(PKG_PY)
 	@mkdir -p $(@D)
-	$(DEPS_PY) pipeline/deps.py > $@.tmp && mv $@.tmp $@ || { rm -f $@.tmp; exit 1; }
+	$(DEPS_PY) pipeline/store/deps.py > $@.tmp && mv $@.tmp $@ || { rm -f $@.tmp; exit 1; }
 
 .DEFAULT_GOAL := all
 # `make` (the default case) runs independent stages side by side, one job per core (the rail stage next
@@ -151,12 +151,12 @@ $(R)/rail.npz: $(RFILE) $(DEPS_rail) | $(CORE)
 $(C)/contact.npz: $(CFILE) $(WFILE) $(RFILE) $(PROFILES) $(DEPS_contact) | $(CORE)
 	$(PY) -m pipeline contact --case $(CASE)
 
-# numba's compiled code of the simulate stage, made while the rail stage runs (pipeline/warm.py; once per build
+# numba's compiled code of the simulate stage, made while the rail stage runs (pipeline/stages/warm.py; once per build
 # folder: a stage whose code changed since compiles for itself, as without it); after the wheel modes, so that with
 # parallel jobs it never holds up the greens stage's inputs
 JIT := $(BUILD)/.numba-warm
 $(JIT): | $(CORE) $(W)/modes.npz
-	$(PY) -m pipeline.warm && touch $@
+	$(PY) -m pipeline.stages.warm && touch $@
 
 $(C)/greens.npz: $(CFILE) $(WFILE) $(RFILE) $(PROFILES) $(W)/modes.npz $(DEPS_greens) | $(CORE)
 	$(PY) -m pipeline greens --case $(CASE)
@@ -235,15 +235,15 @@ curve: ## the verdict of CURVE=<name>: which wheel squeals, f, L_pA, what would 
 # each writes its values into the data files (comments kept); none runs in `make` or `make test`
 calibrate: calibrate-wheel calibrate-profiles calibrate-suspension ## all calibrations in order: the wheel section, its running surface, then the damping (~40 min)
 calibrate-profiles: | $(STAMP) ## write geometry/profiles/ (S1002, C20, BV50, 60E1 new; C20 and BV50 worn, fitted to thesis [4.1])
-	$(PY) -m pipeline.calibrate_profiles
+	$(PY) -m pipeline.validation.calibrate_profiles
 calibrate-coupling: | $(STAMP) ## scan the (2,0,a)/(3,0,a) coupling zero points with the stability screen (the wheel fit's targets)
 	@for c in $(MAP_CASES); do $(MAKE) --no-print-directory contact greens CASE=$$c || exit 1; done
-	$(PY) -m pipeline.calibrate_coupling --study map
+	$(PY) -m pipeline.validation.calibrate_coupling --study map
 calibrate-wheel: | $(STAMP) ## fit the C20 section to the 34 reference frequencies and the coupling zero points (~30 min)
-	$(PY) -m pipeline.calibrate_wheel --wheel c20 --write
+	$(PY) -m pipeline.validation.calibrate_wheel --wheel c20 --write
 calibrate-suspension: | $(STAMP) ## fit the C20's vertical suspension damping to the reference's low-frequency threshold at -5 mm
 	@for c in $(MAP_CASES); do $(MAKE) --no-print-directory contact greens CASE=$$c || exit 1; done
-	$(PY) -m pipeline.calibrate_suspension --study map --write
+	$(PY) -m pipeline.validation.calibrate_suspension --study map --write
 
 # --- quality
 test: | $(STAMP) ## run the test suite (fast; validation tests are skipped)
@@ -253,7 +253,7 @@ validate: | $(STAMP) ## run the slower validation suite and write docs/validatio
 	$(PY) -m pytest -q --validation tests
 	$(PY) -m tests.contact.report > /dev/null
 	$(PY) -m tests.greens.test_report > /dev/null
-	$(PY) -m pipeline.docs validation
+	$(PY) -m pipeline.validation.docs validation
 
 bench: | $(STAMP) ## run the benchmarks and write docs/benchmarks.md
 	$(PY) -m benchmarks

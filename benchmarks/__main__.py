@@ -14,7 +14,7 @@ import platform
 import sys
 import time
 from pathlib import Path
-from pipeline.atomic import save_text
+from pipeline.store.atomic import save_text
 
 
 ROOT = Path(__file__).resolve().parent.parent

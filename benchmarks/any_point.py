@@ -8,7 +8,7 @@ off the rail file's contact.y list (y^R = 8.1 mm, the default case at dy_WR = -2
 * the rail part, before: "add it to contact.y and rebuild the rail" (the section meshed with a
   node there, the waveguide model loaded there, its wave table on Kropp's grid, the moving
   kernel), against now: the point from the running surface's stored wave table
-  (pipeline/rail_surface.py: three nodes' wave shapes, the quadratic form, the kernel);
+  (pipeline/caches/rail_surface_table.py: three nodes' wave shapes, the quadratic form, the kernel);
   the table itself once per rail and time step;
 * the contact and greens stages of that case in fresh processes (wheel modes, rail section and
   surface table built; the point's kernel not cached), before (the revision ``ANY_POINT_BEFORE``,
@@ -33,7 +33,7 @@ DY = -0.022
 
 
 def _grid():
-    from pipeline.greens_stage import RAIL_F_MAX, RAIL_F_TAPER, RAIL_LAGS, RAIL_NT
+    from pipeline.stages.greens import RAIL_F_MAX, RAIL_F_TAPER, RAIL_LAGS, RAIL_NT
 
     return {"n_t": RAIL_NT, "n_lags": RAIL_LAGS, "f_max": RAIL_F_MAX, "f_taper": RAIL_F_TAPER}
 
@@ -48,14 +48,14 @@ def _case_dir() -> Path:
 
 def _rail_rows(y: float) -> list:
     from geometry.rail_mesh import mesh_rail
-    from pipeline.config import config_hash
-    from pipeline.greens_stage import rail_taper
-    from pipeline.rail_kernel import wave_table_threads
-    from pipeline.rail_model import build_rail_model
-    from pipeline.rail_stage import load_rail_params
-    from pipeline.rail_surface import kernel_from_waves, point_waves, table_config, table_dir
-    from solvers.green import frequency_grid
-    from solvers.moving_kernel import moving_green_waves
+    from pipeline.config.loader import config_hash
+    from pipeline.stages.greens import rail_taper
+    from pipeline.caches.rail_kernel import wave_table_threads
+    from pipeline.stages.rail_io import build_rail_model
+    from pipeline.stages.rail import load_rail_params
+    from pipeline.caches.rail_surface_table import kernel_from_waves, point_waves, table_config, table_dir
+    from solvers.greens.kernels import frequency_grid
+    from solvers.rail.moving_kernel import moving_green_waves
 
     pr, _ = load_rail_params("bv50")
     grid = _grid()
@@ -211,19 +211,19 @@ def _stage_rows() -> list:
             row("contact, then greens (`make -j1`)", t_s),
             row("**contact and greens together** (started together: `make greens contact CASE=x`, the Makefile's "
                 "-j2)", t_p, bold=True),
-            f"| process start and imports now (python -c 'import pipeline.greens_stage, ...') | | {t_imp:.1f} s | |"]
+            f"| process start and imports now (python -c 'import pipeline.stages.greens, ...') | | {t_imp:.1f} s | |"]
 
 
 def _import_time(env) -> float:
     t0 = time.perf_counter()
-    subprocess.run([sys.executable, "-c", "import pipeline.greens_stage, pipeline.contact_stage, pipeline.rail_surface, "
-                    "solvers.moving_kernel, solvers.green"], cwd=ROOT, env=env, check=True)
+    subprocess.run([sys.executable, "-c", "import pipeline.stages.greens, pipeline.stages.contact, pipeline.caches.rail_surface_table, "
+                    "solvers.rail.moving_kernel, solvers.greens.kernels"], cwd=ROOT, env=env, check=True)
     return time.perf_counter() - t0
 
 
 def run() -> str:
     os.environ.setdefault("OMP_NUM_THREADS", "1")
-    from pipeline.case import resolve_case
+    from pipeline.config.case import resolve_case
 
     load0 = " / ".join(f"{x:.1f}" for x in os.getloadavg())
     cases = _case_dir()

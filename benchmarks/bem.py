@@ -1,8 +1,8 @@
-"""BEM check benchmark (issue 28, solvers/bem.py, solvers/bem_revolution.py): `run() -> str`.
+"""BEM check benchmark (issue 28, solvers/radiation/bem.py, solvers/radiation/bem_revolution.py): `run() -> str`.
 
     OMP_NUM_THREADS=1 NUMBA_NUM_THREADS=1 POCL_MAX_PTHREAD_COUNT=1 .venv/bin/python -m benchmarks bem --update
 
-The default case's wheel at (2,0,a) (the lambda/6 mesh of pipeline.bem_check, 912 vertices), one thread,
+The default case's wheel at (2,0,a) (the lambda/6 mesh of pipeline.validation.bem_check, 912 vertices), one thread,
 side by side in one run (alternated, minimum of 2 each, after a warm-up call that compiles bempp's
 kernels): the free field by the 3-D solve and by the revolution solver (same discrete problem), and the
 image wheel's cross block of the ground (the revolution solver's cost over a ground) on bempp's numba
@@ -19,10 +19,10 @@ from benchmarks.timing import min_time
 
 
 def run() -> str:
-    from pipeline.bem_check import GROUND_BELOW_CONTACT, wheel_mesh
-    from pipeline.radiate_stage import load_radiation_model
-    from solvers import bem
-    from solvers.bem_revolution import cross_block, revolution_power
+    from pipeline.validation.bem_check import GROUND_BELOW_CONTACT, wheel_mesh
+    from pipeline.stages.radiate import load_radiation_model
+    from solvers.radiation import bem
+    from solvers.radiation.bem_revolution import cross_block, revolution_power
 
     import bempp_cl.api as api
 

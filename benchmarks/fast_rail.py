@@ -5,9 +5,9 @@
 Side by side in one run, on the BV50 rail at the default case's head point (y^R = 12 mm,
 v = 50 km/h, dt = 36 us, Kropp's grid N_t = 8192, 4096 lags):
 
-* the moving Green's function: the reference construction (``solvers.green.moving_green``,
+* the moving Green's function: the reference construction (``solvers.greens.kernels.moving_green``,
   Kropp per lag from the transfer receptance, as the greens stage did before) against the
-  wave-table form (``solvers.moving_kernel.moving_green_waves``), from the same wave table;
+  wave-table form (``solvers.rail.moving_kernel.moving_green_waves``), from the same wave table;
   the rail model and the wave table themselves (the cache's cold path);
 * the greens stage of a case in a fresh process: with the rail kernel in the shared cache
   (a new wheel, friction or creepage) and with an empty cache (a new rail point);
@@ -37,12 +37,12 @@ BUILD = ROOT / "build"
 
 
 def _kernels(rows: list) -> None:
-    from pipeline.greens_stage import RAIL_F_TAPER, RAIL_LAGS, RAIL_NT, rail_taper
-    from pipeline.rail_kernel import table_transfer, wave_table_threads
-    from pipeline.rail_stage import load_rail_params
-    from solvers.green import frequency_grid, moving_green
-    from solvers.moving_kernel import moving_green_waves
-    from pipeline.rail_model import build_rail_model
+    from pipeline.stages.greens import RAIL_F_TAPER, RAIL_LAGS, RAIL_NT, rail_taper
+    from pipeline.caches.rail_kernel import table_transfer, wave_table_threads
+    from pipeline.stages.rail import load_rail_params
+    from solvers.greens.kernels import frequency_grid, moving_green
+    from solvers.rail.moving_kernel import moving_green_waves
+    from pipeline.stages.rail_io import build_rail_model
 
     dt, v, y = 36e-6, 50 / 3.6, 0.012
     pr, _ = load_rail_params("bv50")
@@ -123,8 +123,8 @@ def _stage(rows: list) -> None:
 def _convolution(rows: list) -> None:
     import numba
 
-    from solvers.green import convolve_direct, ring_convolver, ring_step
-    from solvers.partitioned import partitioned_convolver, partitioned_history
+    from solvers.greens.kernels import convolve_direct, ring_convolver, ring_step
+    from solvers.timeloop.partitioned import partitioned_convolver, partitioned_history
 
     @numba.njit(cache=False)
     def ring_history(rc, F):
@@ -185,14 +185,14 @@ machine may be shared with other jobs).
 The reference evaluates exp(-i k x) for every wave, frequency and lag (2.6e9 complex exponentials) and
 contracts them per lag; the wave-table form runs the powers z^k of each wave as a recurrence and drops the
 evanescent near-field waves once their geometric remainder is below 1e-17 of the point receptance
-(`solvers/moving_kernel.py`). The greens stage keeps the kernel in `build/rails/<rail>/moving/<key>.npz`,
-shared by every case with the same rail, |y^R|, speed and time step (`pipeline/rail_kernel.py`).
+(`solvers/rail/moving_kernel.py`). The greens stage keeps the kernel in `build/rails/<rail>/moving/<key>.npz`,
+shared by every case with the same rail, |y^R|, speed and time step (`pipeline/caches/rail_kernel.py`).
 
 | rail convolution in the time loop, per step (njit loop over 100,000 steps) | time | speed-up |
 |---|---:|---:|
 {chr(10).join(conv)}
 
-The partitioned form (`solvers/partitioned.py`): the first B lags directly, the other K - B in partitions of B
+The partitioned form (`solvers/timeloop/partitioned.py`): the first B lags directly, the other K - B in partitions of B
 lags by overlap-save FFTs of 2B points once per B steps (both force components in one complex FFT); exact
 to rounding.
 """

@@ -1,4 +1,4 @@
-"""Friction curve benchmarks (pipeline/friction.py): `run() -> str` gives the markdown section.
+"""Friction curve benchmarks (pipeline/caches/friction_curves.py): `run() -> str` gives the markdown section.
 
     OMP_NUM_THREADS=1 .venv/bin/python -m benchmarks friction [--update]
 
@@ -8,7 +8,7 @@ On the default case's contact (its static pressure field from the contact stage'
 * before: the contact stage's fixed family, 11 Coulomb curves mu = 0.10 .. 0.60 (step 0.05),
   one ``rf_curve`` each, as the stage built them for every case;
 * now: the curve of one new value (0.33, 0.05, 0.65: each not on the old grid) through the
-  stage's cache (``pipeline.friction.CurveCache``, an empty temporary folder: computed and
+  stage's cache (``pipeline.caches.friction_curves.CurveCache``, an empty temporary folder: computed and
   written), and the same value again (read back from the cache).
 
 Target (issue 26): a new friction value costs under 1 s.
@@ -29,7 +29,7 @@ TARGET = 1.0                                                 # s per new value
 
 def _static_contact():
     """(p3, dx, dy, v, E, nu) of the default case's static contact (the contact stage's code)."""
-    from pipeline.contact_stage import contact_setup, static_contact
+    from pipeline.stages.contact import contact_setup, static_contact
 
     c, pw, _, geo, _ = contact_setup("default")
     E, nu = pw["material"]["E"], pw["material"]["nu"]
@@ -41,10 +41,10 @@ def _static_contact():
 
 def run() -> str:
     from benchmarks.__main__ import machine
-    from pipeline.friction import CurveCache, Friction
+    from pipeline.caches.friction_curves import CurveCache, Friction
     from solvers.contact.friction import rf_curve
 
-    from pipeline.provenance import git_revision, library_versions
+    from pipeline.store.provenance import git_revision, library_versions
 
     p3, dx, dy, v, E, nu = _static_contact()
     rf_curve(p3, dx, dy, v, 0.3, E, nu)                       # numba compiled / loaded from its cache
@@ -79,7 +79,7 @@ is shared: wall times are noisy, the ratio is the figure to compare).
 
 Before: the contact stage built the fixed family mu = 0.10 .. 0.60 (step 0.05) for every case: 11 curves in
 **{old:.2f} s** ({old / len(OLD_GRID):.2f} s per curve), and no other value existed. Now: the case's own value,
-and a study's values, each once per contact (`pipeline.friction.CurveCache`, build/cases/<case>/friction/):
+and a study's values, each once per contact (`pipeline.caches.friction_curves.CurveCache`, build/cases/<case>/friction/):
 
 | new value mu | first time (built and written) | again (from the cache) |
 |---:|---:|---:|

@@ -57,7 +57,7 @@ def run() -> str:
 -0.003) on the Hertzian wheel/rail contact of the contact suite (29 x 25 grid, dx = 0.5 mm, 353 contact
 elements, v = 50 km/h), one process, one core, the least of 3 (curves) or 5 (solves) runs after one warm-up.
 A slip-speed dependent law runs CONTACT's slip-velocity iteration around the Coulomb solver
-(`solvers/contact/tang_falling.py`) and has 31 nodes (12 on the falling branch) against Coulomb's 24.  Load
+(`solvers/contact/tang/falling.py`) and has 31 nodes (12 on the falling branch) against Coulomb's 24.  Load
 average of the shared 2-core machine: {load0[0]:.1f} at the start, {load1[0]:.1f} at the end (timings are noisy;
 the ratio column is measured side by side in this run).  Target: under 1 s per curve.
 

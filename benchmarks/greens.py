@@ -1,4 +1,4 @@
-"""Green's function benchmarks (solvers/green.py): `run() -> str` gives the markdown section.
+"""Green's function benchmarks (solvers/greens/kernels.py): `run() -> str` gives the markdown section.
 
     OMP_NUM_THREADS=1 .venv/bin/python -m benchmarks.greens
 
@@ -16,9 +16,9 @@ import numpy as np
 from benchmarks.timing import median_time
 
 from solvers.constants import thesis_contact_point
-from solvers.green import (choose_grid, convolve_direct, convolve_fft, filter_history, green_from_receptance,
+from solvers.greens.kernels import (choose_grid, convolve_direct, convolve_fft, filter_history, green_from_receptance,
                            modal_filter, modal_kernel, moving_green, ring_convolver, ring_step)
-from solvers.receptance import wheel_receptance
+from solvers.wheel.receptance import wheel_receptance
 from tests.greens import DT, V, beam_transfer, wheel_case
 
 
@@ -95,7 +95,7 @@ def run() -> str:
                 f"{t_fft:.2f} s ({1e9 * t_fft / nt:.0f} ns/step) |")
     return f"""## Green's functions
 
-`solvers/green.py`, dt = 36 us, C20 modal data: {w['source']}; rail: Euler-Bernoulli beam on a damped foundation
+`solvers/greens/kernels.py`, dt = 36 us, C20 modal data: {w['source']}; rail: Euler-Bernoulli beam on a damped foundation
 (tests/greens). Medians of repeated runs after warm-up (numba compiled), one process.
 
 | operation | time |

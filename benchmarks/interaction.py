@@ -1,4 +1,4 @@
-"""Interaction benchmarks (solvers/interaction.py): `run() -> str` gives the markdown section.
+"""Interaction benchmarks (solvers/timeloop/interaction.py): `run() -> str` gives the markdown section.
 
     OMP_NUM_THREADS=1 .venv/bin/python -m benchmarks.interaction
 
@@ -16,9 +16,9 @@ from __future__ import annotations
 import numpy as np
 
 from benchmarks.timing import median_time, min_time
-from solvers.partitioned import DEFAULT_BLOCK
+from solvers.timeloop.partitioned import DEFAULT_BLOCK
 
-from solvers.interaction import WheelModes, point_contact, simulate
+from solvers.timeloop.interaction import WheelModes, point_contact, simulate
 from tests.interaction import (CONTACT, DT, GAMMA_Y, MU as MU_DEFAULT, RAIL, ROOT, V, beam_kernel, bv50_kernel,
                                c20_modes, default_contact)
 
@@ -61,7 +61,7 @@ def flop_floor(wheel, g, newton_iterations: float) -> dict:
     tables, ~57 flops per Newton iteration of the tangential solve + ~105 per step), wheel filters
     (14 per underdamped mode, 25 per over-damped one), rail (partitioned: 8 per head lag, 32 per
     partition and bin over B steps, two complex FFTs of 2B points per B steps at 5 N log2 N)."""
-    from solvers.green import modal_filter
+    from solvers.greens.kernels import modal_filter
 
     filt = modal_filter(DT, wheel.f_r, wheel.modal_mass, wheel.zeta, wheel.phi)
     B = DEFAULT_BLOCK
@@ -88,7 +88,7 @@ def falling_three_creepages(contact):
     from solvers.contact.falling import scaled_curve, tang_curve
     from solvers.contact.friction_laws import get_friction_law
     from solvers.contact.norm import NormTable, table_pressure
-    from solvers.interaction import static_approach
+    from solvers.timeloop.interaction import static_approach
     from solvers.timeloop.driver import spin_length
 
     law = get_friction_law("polach", mu0=0.35, A=0.25 / 0.35, B=2.0)
@@ -221,7 +221,7 @@ def run() -> str:
                    f"{1e3 * t_k:.1f} ms |")
         ref.append(f"| Kalker's transient TANG + per-step NORM | {1e3 * t_kn:.1f} ms |")
         ref_note = ("TANG per step: FFT-based Newton-Krylov on the contact's window, warm-started and "
-                    "extrapolated from the last steps, tolerance solvers.interaction.KALKER_TOL; elements "
+                    "extrapolated from the last steps, tolerance solvers.timeloop.interaction.KALKER_TOL; elements "
                     "entering the contact (the interpolated field's set changes when the approach crosses a "
                     "table node) cost an extra Newton step or two."
                     + " The 100-step runs start from the steady state. 8 s of rolling with Kalker's model in the loop (default case, full model, no early stop: `python -m benchmarks.interaction kalker`), measured outside this suite on 2026-11-24 on the quiet machine (load average 0.6-0.9 before, the run itself), four runs of the same code: 96.3, 104.0, 105.8 and 124.8 s wall (0.43, 0.47, 0.47 and 0.55 ms per step, CPU = wall within 2 s); the machine's speed varied by up to 35 % between runs that day (the same code, 2 s of rolling: 0.35 and 0.48 ms per step). The default case squeals: (2,0,a) at 434.90 Hz, L_F2 = 53.302 dB against 53.2 dB with the point model; in the limit cycle 1.6 Newton and 5.2 CG steps per step on a 27 x 14 window, 277 elements in contact, about 6.5 FFT products and 5.2 preconditioner transforms per step. Old and new side by side (2 s of rolling, alternated, same machine, same hour): before the steps were compiled (73989ab) 0.72 and 0.54 ms per step, now 0.44 and 0.50 ms, with the same records (L_F2 53.3019 dB, 1.420 Newton steps per step). Earlier: 155.3 and 168.5 s wall (0.69 ms per step; the Newton-CG solve compiled, the step around it in Python), 299 s (1.31 ms per step, at KALKER_TOL = 1e-6, before the Newton-CG solve was compiled); the first FFT solver took 641 s wall on the former default case, the former dense solver ~27 min (estimated).")
@@ -245,7 +245,7 @@ def run() -> str:
     falling_note = falling_section(runs, law, extra)
     return f"""## Interaction
 
-`solvers/interaction.py`, `OMP_NUM_THREADS=1 .venv/bin/python -m benchmarks.interaction`. Minimum of 3 runs after
+`solvers/timeloop/interaction.py`, `OMP_NUM_THREADS=1 .venv/bin/python -m benchmarks.interaction`. Minimum of 3 runs after
 JIT warm-up, one core (the machine may be shared: the minimum is the cost). 8 s of rolling at dt = 36 us ({n_steps:,} steps), point-contact model, NORM and compliance
 tables, no early stop. Wheel: C20 at the default case's contact point, {len(wheel.f_r)} modes below 7 kHz ({n_rigid} rigid-body /
 suspension + {len(wheel.f_r) - n_rigid} flexible) as recursive modal filters; rail: moving Green's function,
@@ -298,7 +298,7 @@ def kalker_run(duration: float = 8.0) -> str:
     import os
     import time
 
-    from solvers.interaction import contact_model
+    from solvers.timeloop.interaction import contact_model
 
     with np.load(GREENS) as d:
         wheel = WheelModes(d["wheel_f"], d["wheel_mass"], d["wheel_zeta"], d["wheel_phi"])

@@ -4,7 +4,7 @@ cores"): `run() -> str` gives the markdown section.
     OMP_NUM_THREADS=1 .venv/bin/python -m benchmarks line --update
 
 1. **100 curves.**  A line of 100 curves, R = 50-600 m log-spaced (every radius different), speed and
-   cant from the radius study's design rule (``pipeline.verdict.radius.design``), the C20 metro on dry
+   cant from the radius study's design rule (``pipeline.study.radius.design``), the C20 metro on dry
    rail (mu = 0.4), run as a line study (``make study``'s code: the runner, a local Dask cluster of two
    single-threaded workers) in a fresh build folder.  That folder shares (hard links) the wheel's modes,
    the rail's section mesh and rail.npz and the running surface's wave table (``build/rails/<rail>/
@@ -35,7 +35,7 @@ SIDE_BY_SIDE = (60.0, 110.0, 250.0, 480.0)
 
 
 def line_csv(n: int = N_CURVES) -> str:
-    from pipeline.verdict.radius import design
+    from pipeline.study.radius import design
 
     out = ["id,chainage_m,radius_m,cant_mm,length_m,speed_kmh,vehicle,friction"]
     x = 0.0
@@ -60,7 +60,7 @@ def _fresh_build(src: Path, dst: Path) -> None:
 
 
 def hundred_curves(tmp: Path) -> dict:
-    from pipeline import paths
+    from pipeline.store import paths
     from pipeline.study.stage import run_study
 
     build = tmp / "build"
@@ -96,9 +96,9 @@ def hundred_curves(tmp: Path) -> dict:
 def side_by_side() -> dict:
     from pipeline.study.line_input import LineRow, write_curves
     from pipeline.study.stage import load_study
-    from pipeline.verdict import screen_first
-    from pipeline.verdict.radius import design
-    from pipeline.verdict.stage import run_curve
+    from pipeline.curve import screen_first
+    from pipeline.study.radius import design
+    from pipeline.curve.stage import run_curve
 
     spec, _ = load_study("metro_line")
     spec = dict(spec, name="bench_side")
@@ -116,7 +116,7 @@ def side_by_side() -> dict:
     try:
         for name in names:                                  # warm: kernels, curving, numba, modes
             screen_first.run_screen_first(name, write=False)
-        from pipeline.curving import _solve_cached
+        from pipeline.curve.curving import _solve_cached
 
         for name in names:
             _solve_cached.cache_clear()                     # both paths solve the curving (memoised per process)

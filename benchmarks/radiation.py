@@ -1,4 +1,4 @@
-"""Radiation benchmarks (pipeline/radiate_stage.py, postprocess/force_radiation.py): `run() -> str`.
+"""Radiation benchmarks (pipeline/stages/radiate.py, solvers/radiation/force_power.py): `run() -> str`.
 
     OMP_NUM_THREADS=1 .venv/bin/python -m benchmarks radiation
 
@@ -14,10 +14,10 @@ import time
 import numpy as np
 
 from benchmarks.timing import median_time
-from pipeline import paths
-from pipeline.radiate_stage import load_radiation_model, sound_power_of_forces
+from pipeline.store import paths
+from pipeline.stages.radiate import load_radiation_model, sound_power_of_forces
 from solvers.constants import F_MAX_HZ as F_MAX
-from postprocess.force_radiation import frequency_grid_for, unit_force_curve
+from solvers.radiation.force_power import frequency_grid_for, unit_force_curve
 
 
 def run() -> str:

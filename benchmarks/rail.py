@@ -29,7 +29,7 @@ t0 = time.perf_counter()
 sys.path.insert(0, {root!r})
 import numpy as np
 from geometry.rail_mesh import mesh_rail
-from pipeline.rail_model import build_rail_model, load_rail
+from pipeline.stages.rail_io import build_rail_model, load_rail
 from solvers import waveguide as wg, rail_response as rr
 t_import = time.perf_counter() - t0
 T = {{"import": t_import}}

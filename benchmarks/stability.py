@@ -1,4 +1,4 @@
-"""Stability-screen benchmarks (solvers/stability.py, pipeline/stability_map.py): `run() -> str`.
+"""Stability-screen benchmarks (solvers/stability/screen.py, pipeline/stability_map.py): `run() -> str`.
 
     OMP_NUM_THREADS=1 .venv/bin/python -m benchmarks stability
 
@@ -16,9 +16,9 @@ import time
 import numpy as np
 
 from benchmarks.timing import median_time
-from pipeline import paths
-from pipeline.stability_stage import case_linear_model
-from solvers.stability import Basis, screen
+from pipeline.store import paths
+from pipeline.stages.stability import case_linear_model
+from solvers.stability.screen import Basis, screen
 
 
 def run() -> str:

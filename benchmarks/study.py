@@ -33,7 +33,7 @@ def _study_text() -> str:
     home of the map's grid), at the default case only."""
     import tomllib
 
-    from pipeline import paths
+    from pipeline.store import paths
 
     spec = tomllib.loads((paths.ROOT / "pipeline" / "studies" / "map.toml").read_text())
     lines = ['name = "bench"', 'kind = "map"', 'cases = ["default"]', "[grid]"]

@@ -4,7 +4,7 @@
     OMP_NUM_THREADS=1 .venv/bin/python -m benchmarks study_cases
 
 A map case on a worker is the time loop (8 s at most, early stop) plus, when it squeals, the
-sound power of its final 0.5 s (``postprocess.force_radiation.power_of_forces``).  Here 80 cases
+sound power of its final 0.5 s (``solvers.radiation.force_power.power_of_forces``).  Here 80 cases
 drawn at random (fixed seed) from the grid of pipeline/studies/map.toml at its three contact
 positions run in one process, each first with the current code and then with the previous
 revision's (``benchmarks.baseline``: its solvers and postprocess packages) on the same inputs,
@@ -27,13 +27,13 @@ def run() -> str:
     from pipeline.study.map import grid_of
     from pipeline.study.stage import load_study
     from pipeline.study.worker import _contact, _warm, _wheel
-    from solvers.interaction import StopRule, simulate
+    from solvers.timeloop.interaction import StopRule, simulate
 
     old = previous("solvers", "interaction")
     old_fr = previous("postprocess", "force_radiation")
     if old is None or old_fr is None:
         return "## Study cases, previous and current code\n\n(The previous revision is not in git here: skipped.)\n"
-    from postprocess.force_radiation import power_of_forces
+    from solvers.radiation.force_power import power_of_forces
 
     load0 = os.getloadavg()[0]
     spec, _ = load_study("map")

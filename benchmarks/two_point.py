@@ -16,7 +16,7 @@ import os
 import numpy as np
 
 from benchmarks.timing import min_time
-from solvers.interaction import WheelModes, simulate
+from solvers.timeloop.interaction import WheelModes, simulate
 from solvers.timeloop.two_point_driver import SecondPoint, simulate_two
 from tests.interaction import CONTACT, DT, GAMMA_Y, PRELOAD, V, beam_kernel, c20_modes, default_contact, ROOT
 
@@ -69,7 +69,7 @@ def run() -> str:
 at dt = 36 us ({n:,} steps), point-contact model with tables, no early stop, one core, after JIT warm-up; the
 loops alternated five times in one run, the minimum of each. Structures: {src} ({len(wheel.f_r)} wheel modes,
 rail kernel {g.shape[0]} lags, partitioned convolution); the two-point loop convolves four rail blocks of that length
-(the 4 x 4 moving kernel) with the MIMO convolver (`solvers/mimo_partitioned.py`) and runs the modal filters with
+(the 4 x 4 moving kernel) with the MIMO convolver (`solvers/timeloop/mimo_partitioned.py`) and runs the modal filters with
 inputs and outputs at both points. Contact:
 {'build/cases/default/contact.npz' if CONTACT.exists() else 'the Hertz stand-in'} at both points, mu = 0.35,
 gamma_y = {GAMMA_Y}. Load average {load0:.1f} at the start, {load1:.1f} at the end (2 cores shared by other jobs:

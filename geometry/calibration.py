@@ -46,8 +46,8 @@ import numpy as np
 
 from solvers.constants import THESIS_CONTACT_POINTS_FIELD, thesis_rolling_circle_offset
 
-from .contact_point import second_zone, wheel_shift
-from .wear import RailWear, WheelWear, offset_inward, wheel_normals, worn_rail
+from geometry.contact_point import second_zone, wheel_shift
+from geometry.wear import RailWear, WheelWear, offset_inward, wheel_normals, worn_rail
 
 # thesis [4.1] in the project's convention (y^W = -printed): dy_WR -> (y^W, y^R), m
 THESIS_POSITIONS = THESIS_CONTACT_POINTS_FIELD

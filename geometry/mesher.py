@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .outline import Segment
+from geometry.outline import Segment
 
 
 def mesh_section(segments: list[Segment], path: str, order: int = 1, verbose: bool = False) -> dict[str, int]:

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .profiles import ProfileError
+from geometry.profiles import ProfileError
 
 
 def parse_miniprof(text: str, source: str) -> tuple[dict, np.ndarray, np.ndarray, np.ndarray]:

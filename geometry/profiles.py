@@ -28,7 +28,7 @@ generalized cross-validation when the file states no noise.  It is
 evaluated on a uniform GRID_STEP grid for searches and plots; values,
 slopes and curvatures come from the spline itself (C2).
 
-Everything here is pure: text in, arrays and Profile out (``pipeline.profiles``
+Everything here is pure: text in, arrays and Profile out (``pipeline.config.case_profiles``
 reads and writes the files).
 """
 from __future__ import annotations

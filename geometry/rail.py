@@ -6,7 +6,7 @@ UP, measured from the underside of the rail foot (z = 0).  The pad is a layer
 -t_pad <= z <= 0 under the foot, standing on rigid ground (its underside is
 clamped).  The rail is symmetric about y = 0, so the mesh covers the half
 section y >= 0 only: the waveguide solver treats the symmetric and the
-antisymmetric wave families separately (``solvers.waveguide``), which halves
+antisymmetric wave families separately (``solvers.rail.waveguide``), which halves
 the problem size and makes the family of every wave exact.
 
 The parameter file (``geometry/rails/<name>.toml``) gives the published
@@ -23,13 +23,13 @@ raises ``GeometryError(key, value, allowed)`` before any meshing;
 ``geometry.rail_mesh.mesh_rail(p, path)`` writes a two-region Gmsh mesh
 (physical surface 1 = rail steel, 2 = pad) whose regions share the foot/pad
 interface line.  Reading the parameter file is the pipeline's
-(``pipeline.rail_model.load_rail``, ``pipeline.rail_stage.load_rail_params``).
+(``pipeline.stages.rail_io.load_rail``, ``pipeline.stages.rail.load_rail_params``).
 """
 from __future__ import annotations
 
 import numpy as np
 
-from .outline import GeometryError, Segment, check_simple, fillet
+from geometry.outline import GeometryError, Segment, check_simple, fillet
 
 # physical tags of the two regions (cell tags in dolfinx)
 RAIL_TAG = 1

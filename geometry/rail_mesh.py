@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .rail import CURVE_TAGS, PAD_TAG, RAIL_TAG, check_rail, rail_half_outline
+from geometry.rail import CURVE_TAGS, PAD_TAG, RAIL_TAG, check_rail, rail_half_outline
 
 
 def mesh_rail(p: dict, path: str, verbose: bool = False) -> dict:

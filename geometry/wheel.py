@@ -16,7 +16,7 @@ import numpy as np
 
 from solvers.constants import THESIS_CONTACT_POINTS_FIELD
 
-from .outline import GeometryError, Segment, bezier, check_simple, closed_polygon, fillet
+from geometry.outline import GeometryError, Segment, bezier, check_simple, closed_polygon, fillet
 
 
 # lateral tread positions y^W of the nominal contact points (SPEC 2, thesis [4.1] with its printed y^W

@@ -1,12 +1,12 @@
 """numba's extensions, loaded at its first compile in every process (``skip_special``).
 
-rocket_fft (numpy.fft inside numba, solvers/partitioned.py) is a numba extension: numba runs its
+rocket_fft (numpy.fft inside numba, solvers/timeloop/partitioned.py) is a numba extension: numba runs its
 entry point ``rocket_fft:_init_extension`` at the first compile or cache load of each process, and
 with scipy installed that entry point also compiles scipy.special's loggamma and poch for numba
 (8 signatures, not cached: ~1.5 s per process).  The project calls neither in numba code.
 Importing rocket_fft itself costs ~0.5 s, which the stages without numpy.fft in numba (contact,
 greens) need not pay: its overloads are registered when it is imported, and the one module that
-uses them (solvers/partitioned.py) imports it.
+uses them (solvers/timeloop/partitioned.py) imports it.
 """
 from __future__ import annotations
 

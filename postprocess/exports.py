@@ -54,10 +54,10 @@ NOMINAL_THIRDS = (10, 12.5, 16, 20, 25, 31.5, 40, 50, 63, 80, 100, 125, 160, 200
 
 def third_octaves(f_lo: float = 10.0, f_hi: float = 20000.0):
     """The base-10 1/3-octave bands (IEC 61260-1: f_m = 1000 10^(x/10) Hz, edges f_m 10^(+-1/20)) with
-    nominal labels from 10 Hz to 20 kHz overlapping [f_lo, f_hi], as ``postprocess.listener.Bands``.
+    nominal labels from 10 Hz to 20 kHz overlapping [f_lo, f_hi], as ``postprocess.listening.listener.Bands``.
     Computed here rather than through pyfar: the radiate stage runs before the listening packages
     are installed (the same bands as ``listener.third_octave_bands``; tests/report/test_exports.py)."""
-    from .listener import Bands
+    from postprocess.listening.listener import Bands
 
     x = np.arange(-20, 14)                                   # 10 Hz .. 20 kHz
     centre = 1000.0 * 10 ** (x / 10)
@@ -69,7 +69,7 @@ def third_octaves(f_lo: float = 10.0, f_hi: float = 20000.0):
 def band_power(f, W, f_lo: float = 10.0, f_hi: float = 20000.0):
     """(Bands, W per band, W outside all bands): the entries W (W at frequencies f, Hz) summed into
     the 1/3-octave bands overlapping [f_lo, f_hi] (ideal edges, as the listen stage's bands)."""
-    from .listener import band_sums
+    from postprocess.listening.listener import band_sums
 
     bands = third_octaves(f_lo, f_hi)
     per, out = band_sums(f, W, bands)

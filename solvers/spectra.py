@@ -15,7 +15,7 @@ default), for x(t) = A cos(2 pi f0 t + p) sampled at dt, N samples, window w_k:
   ``dominant_frequency`` interpolates it away.
 * ``scaling='rms'``: the amplitude scaling divided by sqrt(2): a sinusoid on a
   bin gives |X_k| = A / sqrt(2), its RMS value.  This is the force amplitude
-  ``postprocess.radiation.sound_power`` expects by default (the mean square
+  ``solvers.radiation.thompson_jones.sound_power`` expects by default (the mean square
   [4.56] is then a time mean square).
 * ``scaling='power'`` (the power-correct alternative): c = sqrt(2 / (N sum(w^2)))
   (1/sqrt(N sum w^2) at DC and Nyquist), so that sum_k |X_k|^2 equals the mean

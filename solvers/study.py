@@ -17,7 +17,7 @@ from typing import Generator, NamedTuple
 
 import numpy as np
 
-from .constants import SQUEAL_LEVEL_DB as SQUEAL_LEVEL  # dB re 1 N: squeal when L_F2 >= this (SPEC 6)
+from solvers.constants import SQUEAL_LEVEL_DB as SQUEAL_LEVEL  # dB re 1 N: squeal when L_F2 >= this (SPEC 6)
 
 
 def grid(first: float, last: float, step: float, decimals: int = 6) -> np.ndarray:

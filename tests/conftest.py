@@ -40,8 +40,8 @@ def pytest_sessionstart(session):
     from pathlib import Path
 
     root = Path(__file__).resolve().parent.parent
-    check = ("from pipeline.artifacts import load_npz; from pipeline.paths import wheel_dir; "
-             "from pipeline.wheel_stage import load_wheel; "
+    check = ("from pipeline.store.artifacts import load_npz; from pipeline.store.paths import wheel_dir; "
+             "from pipeline.stages.wheel import load_wheel; "
              "load_npz(wheel_dir('c20') / 'modes.npz', 'wheel-modes', load_wheel('c20')[0])")
     if subprocess.run([sys.executable, "-c", check], cwd=root, capture_output=True).returncode != 0:
         for stage in ("mesh", "modes"):

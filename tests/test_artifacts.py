@@ -1,4 +1,4 @@
-"""Tests for pipeline.artifacts: atomic writes, provenance, checked loading."""
+"""Tests for pipeline.store.artifacts: atomic writes, provenance, checked loading."""
 
 from __future__ import annotations
 
@@ -17,8 +17,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pipeline import provenance as provenance_module
-from pipeline.artifacts import (
+from pipeline.store import provenance as provenance_module
+from pipeline.store.artifacts import (
     PROVENANCE_KEY,
     ArtifactError,
     atomic_write,
@@ -29,8 +29,8 @@ from pipeline.artifacts import (
     save_json,
     save_npz,
 )
-from pipeline.provenance import git_revision, library_versions
-from pipeline.config import config_hash
+from pipeline.store.provenance import git_revision, library_versions
+from pipeline.config.loader import config_hash
 
 REPO_ROOT = Path(__file__).resolve().parent.parent
 
@@ -123,8 +123,8 @@ _WRITER = textwrap.dedent(
     """
     import sys
     import numpy as np
-    import pipeline.artifacts as artifacts
-    import pipeline.provenance as provenance
+    import pipeline.store.artifacts as artifacts
+    import pipeline.store.provenance as provenance
     provenance.library_versions = lambda: {}
     data = np.random.default_rng(0).random(8_000_000)
     artifacts.save_npz(sys.argv[1], "big", {"n": 1}, data=data)
@@ -450,7 +450,7 @@ def test_missing_library_recorded_as_not_installed(monkeypatch, fresh_versions):
 
 def test_heavy_libraries_not_imported_at_module_import():
     code = (
-        "import sys, pipeline.artifacts, pipeline.config\n"
+        "import sys, pipeline.store.artifacts, pipeline.config.loader\n"
         "heavy = {'dolfinx', 'petsc4py', 'slepc4py', 'gmsh', 'numba', 'scipy'}\n"
         "print(sorted(heavy & set(sys.modules)))\n"
     )

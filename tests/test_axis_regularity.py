@@ -31,7 +31,7 @@ def test_free_disc_reference_values():
 
 @pytest.fixture(scope="module")
 def disc(tmp_path_factory):
-    from solvers.axisym import HarmonicSolver
+    from solvers.wheel.axisym import HarmonicSolver
 
     nl, nt = 30, 2
     r = np.linspace(0, A, nl + 1)

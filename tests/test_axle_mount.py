@@ -9,14 +9,14 @@ import copy
 import numpy as np
 import pytest
 
-from pipeline.wheel_stage import load_wheel
+from pipeline.stages.wheel import load_wheel
 
 
 @pytest.fixture(scope="module")
 def axle_model(tmp_path_factory):
     from geometry.mesher import mesh_section, read_msh
     from geometry.wheel import wheel_segments
-    from pipeline.wheel_stage import _solver
+    from pipeline.stages.wheel import _solver
 
     p, _ = load_wheel("c20")
     p = copy.deepcopy(p)
@@ -44,7 +44,7 @@ def test_bounce_on_suspension(axle_model):
 def test_wheel_modes_survive_the_axle(axle_model):
     """n >= 2 modes hardly see the axle: the (2,0,a) frequency of the axle
     model is within 2 % of the clamped-bore model's."""
-    from pipeline.wheel_stage import modes_for_parameters
+    from pipeline.stages.wheel import modes_for_parameters
 
     p, hs = axle_model
     f_axle = hs.solve(2, 600.0).freqs_hz[0]

@@ -6,8 +6,8 @@ from pathlib import Path
 
 import pytest
 
-from pipeline.wheel_stage import load_wheel, modes_for_parameters, reference_rows
-from postprocess.mode_reference import match_modes, summary
+from pipeline.stages.wheel import load_wheel, modes_for_parameters, reference_rows
+from postprocess.modes.reference import match_modes, summary
 
 REF = Path(__file__).parent / "reference" / "c20_modes.csv"
 

@@ -1,10 +1,10 @@
-"""Case names and the one resolved case (issue 25): ``pipeline.paths`` for curve wheels
-``<curve>/<wheel>``, ``pipeline.case.resolve_case``."""
+"""Case names and the one resolved case (issue 25): ``pipeline.store.paths`` for curve wheels
+``<curve>/<wheel>``, ``pipeline.config.case.resolve_case``."""
 from __future__ import annotations
 
 import pytest
 
-from pipeline import paths
+from pipeline.store import paths
 
 
 def test_curve_wheel_paths(tmp_path, monkeypatch):
@@ -34,7 +34,7 @@ def test_missing_curve_wheel_asks_for_make_curve(tmp_path, monkeypatch):
 
 
 def test_resolved_default_case():
-    from pipeline.case import resolve_case
+    from pipeline.config.case import resolve_case
 
     rc = resolve_case("default")
     assert rc.name == "default" and rc.case["wheel"] == "c20" and rc.wheel["name"] == "c20" and rc.rail["name"] == "bv50"
@@ -46,8 +46,8 @@ def test_resolved_default_case():
 
 
 def test_resolved_once_per_process_and_again_when_a_file_changes(tmp_path, monkeypatch):
-    import pipeline.profiles as P
-    from pipeline import case as C
+    import pipeline.config.case_profiles as P
+    from pipeline.config import case as C
 
     calls = []
     real = P.case_contact
@@ -63,8 +63,8 @@ def test_resolved_once_per_process_and_again_when_a_file_changes(tmp_path, monke
 
 
 def test_missing_and_malformed_cases_are_one_line_errors(tmp_path, monkeypatch):
-    from pipeline.case import resolve_case
-    from pipeline.config import ConfigError
+    from pipeline.config.case import resolve_case
+    from pipeline.config.loader import ConfigError
 
     monkeypatch.setenv("SQUEAL_BUILD_DIR", str(tmp_path))
     with pytest.raises(ConfigError, match="run make curve CURVE=r150 first") as e:
@@ -77,9 +77,9 @@ def test_missing_and_malformed_cases_are_one_line_errors(tmp_path, monkeypatch):
 def test_every_stage_of_a_case_derives_its_contact_point_once(monkeypatch):
     """simulate's configuration (its contact's and its greens') and stability's (which also asks
     for simulate's) derived the contact point 2 and 4 times before the resolved case; now once."""
-    import pipeline.profiles as P
-    from pipeline import case as C
-    from pipeline.simulate_stage import simulate_config
+    import pipeline.config.case_profiles as P
+    from pipeline.config import case as C
+    from pipeline.stages.simulate import simulate_config
 
     C.clear()
     calls = []
@@ -87,8 +87,8 @@ def test_every_stage_of_a_case_derives_its_contact_point_once(monkeypatch):
     monkeypatch.setattr(P, "case_contact", lambda name: calls.append(name) or real(name))
     simulate_config("default")
     simulate_config("default")
-    from pipeline.contact_stage import contact_inputs
-    from pipeline.greens_stage import greens_inputs
+    from pipeline.stages.contact import contact_inputs
+    from pipeline.stages.greens import greens_inputs
 
     contact_inputs("default")
     greens_inputs("default")
@@ -98,14 +98,14 @@ def test_every_stage_of_a_case_derives_its_contact_point_once(monkeypatch):
 def test_default_artifacts_stay_valid():
     """The configuration hashes are those of the artifacts built before the resolved case
     (build/cases/default: contact.npz and greens.npz load against today's configuration)."""
-    from pipeline import artifacts
-    from pipeline.contact_stage import contact_inputs
+    from pipeline.store import artifacts
+    from pipeline.stages.contact import contact_inputs
 
     cfg = contact_inputs("default")[3]
     artifacts.load_npz(paths.case_dir("default") / "contact.npz", "contact", cfg)
     g = paths.case_dir("default") / "greens.npz"
     if g.exists():
-        from pipeline.greens_stage import greens_inputs
+        from pipeline.stages.greens import greens_inputs
 
         artifacts.load_npz(g, "greens", greens_inputs("default")[-1])
 
@@ -115,7 +115,7 @@ def test_one_stage_table_for_the_command_line_and_make():
     import sys
 
     from pipeline import __main__ as cli
-    from pipeline import deps
+    from pipeline.store import deps
     from pipeline.stages import STAGES
 
     assert set(deps.ENTRIES) == {n for n, s in STAGES.items() if s.make}
@@ -124,7 +124,7 @@ def test_one_stage_table_for_the_command_line_and_make():
     for name, (module, function, takes) in deps.ENTRIES.items():
         assert function in deps.Graph().load(module).defs, name
     # deps.py and the table need the standard library only (no site-packages: Make runs it before the venv)
-    r = subprocess.run([sys.base_prefix + "/bin/python3", "-I", "-S", "pipeline/deps.py", "--case",
+    r = subprocess.run([sys.base_prefix + "/bin/python3", "-I", "-S", "pipeline/store/deps.py", "--case",
                         "pipeline/cases/default.toml"], cwd=paths.ROOT, capture_output=True, text=True)
     assert r.returncode == 0 and r.stdout.split() == ["c20", "bv50"], r.stderr
 

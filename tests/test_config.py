@@ -1,4 +1,4 @@
-"""Tests for pipeline.config: schema validation, error reporting, hashing."""
+"""Tests for pipeline.config.loader: schema validation, error reporting, hashing."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ import textwrap
 
 import pytest
 
-from pipeline.config import (
+from pipeline.config.loader import (
     MISSING,
     REQUIRED,
     ConfigError,

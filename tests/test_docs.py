@@ -5,15 +5,15 @@ from __future__ import annotations
 import re
 import subprocess
 
-from pipeline import docs
-from pipeline.config_schema import Field
-from pipeline.paths import ROOT
-from pipeline.schemas import CASE, LISTENER
+from pipeline.validation import docs
+from pipeline.config.schema import Field
+from pipeline.store.paths import ROOT
+from pipeline.config.input_schemas import CASE, LISTENER
 
 
 def test_inputs_page_is_up_to_date():
     page = (ROOT / "docs" / "inputs.md").read_text()
-    assert page == docs.inputs_text(), "docs/inputs.md is stale: run `.venv/bin/python -m pipeline.docs inputs`"
+    assert page == docs.inputs_text(), "docs/inputs.md is stale: run `.venv/bin/python -m pipeline.validation.docs inputs`"
 
 
 def test_inputs_page_lists_every_case_key_with_its_range():

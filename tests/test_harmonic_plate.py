@@ -2,7 +2,7 @@
 
 A thin annular plate, inner edge r = b clamped, outer edge r = a free, is
 meshed as its (r, z) cross-section -- a 300 mm x 4 mm strip -- and solved
-with solvers.axisym.HarmonicSolver (3D elasticity in each harmonic n,
+with solvers.wheel.axisym.HarmonicSolver (3D elasticity in each harmonic n,
 P2 triangles).  Its out-of-plane (axial, U_z) modes are compared with
 tests/analytic/annular_plate.py (exact Kirchhoff theory).
 
@@ -49,7 +49,7 @@ def plate_segments():
 
 @pytest.fixture(scope="module")
 def plate_solver(tmp_path_factory):
-    from solvers.axisym import HarmonicSolver
+    from solvers.wheel.axisym import HarmonicSolver
 
     path = os.path.join(tmp_path_factory.mktemp("plate"), "plate.msh")
     names = mesh_section(plate_segments(), path)

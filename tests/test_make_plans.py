@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from pipeline import deps
+from pipeline.store import deps
 
 ROOT = Path(__file__).resolve().parent.parent
 ALL = {"mesh", "modes", "shapes", "rail", "contact", "greens", "simulate", "radiate", "stability", "report"}  # the report shows the stability screen (issue 27)
@@ -99,23 +99,22 @@ def stages(steps) -> set[str]:
 
 
 def test_schemas_plans_every_stage_it_configures(built):
-    # pipeline/schemas.py shapes the wheel, rail and case configuration every stage loads;
+    # pipeline/config/input_schemas.py shapes the wheel, rail and case configuration every stage loads;
     # before issue 14 this planned nothing but the report
-    touch(built / "pipeline/schemas.py")
+    touch(built / "pipeline/config/input_schemas.py")
     assert stages(plan(built, "all")) == ALL
 
 
 def test_config_module_plans_every_stage(built):
-    touch(built / "pipeline/config.py")
+    touch(built / "pipeline/config/loader.py")
     assert stages(plan(built, "all")) == ALL
 
 
 def _radiation_modules() -> list[str]:
-    """The postprocess modules about radiation that the radiate stage reaches (radiation.py
-    today; whatever it is split into tomorrow)."""
+    """The radiation modules (solvers/radiation/) that the radiate stage reaches."""
     mod, fn, _ = deps.ENTRIES["radiate"]
-    found = [f for f in deps.stage_files(mod, fn) if f.startswith("postprocess/") and "radiation" in f]
-    assert found, "the radiate stage reaches no postprocess radiation module"
+    found = [f for f in deps.stage_files(mod, fn) if f.startswith("solvers/radiation/") and not f.endswith("__init__.py")]
+    assert found, "the radiate stage reaches no radiation module"
     return found
 
 
@@ -127,8 +126,8 @@ def test_radiation_module_plans_radiate_and_report_only(built, module):
 
 def test_interaction_solver_plans_simulate_and_after(built):
     mod, fn, _ = deps.ENTRIES["simulate"]
-    assert "solvers/interaction.py" in deps.stage_files(mod, fn) or not (ROOT / "solvers/interaction.py").exists()
-    touch(built / "solvers/interaction.py")
+    assert "solvers/timeloop/interaction.py" in deps.stage_files(mod, fn) or not (ROOT / "solvers/timeloop/interaction.py").exists()
+    touch(built / "solvers/timeloop/interaction.py")
     assert stages(plan(built, "all")) == {"simulate", "stability", "radiate", "report"}  # the screen imports the loop's inputs
 
 

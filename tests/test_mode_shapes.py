@@ -1,5 +1,5 @@
-"""Tests for postprocess.mode_geometry and postprocess.mode_shapes (geometry,
-displacement mapping, rendered images saved through pipeline.atomic)."""
+"""Tests for postprocess.modes.geometry and postprocess.modes.shapes (geometry,
+displacement mapping, rendered images saved through pipeline.store.atomic)."""
 
 import os
 
@@ -9,9 +9,9 @@ import matplotlib.image as mpimg  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
-from pipeline.atomic import save_figure, save_image  # noqa: E402
-from postprocess import mode_geometry as mg  # noqa: E402
-from postprocess import mode_shapes as ms  # noqa: E402
+from pipeline.store.atomic import save_figure, save_image  # noqa: E402
+from postprocess.modes import geometry as mg  # noqa: E402
+from postprocess.modes import shapes as ms  # noqa: E402
 
 RI, RO, H = 0.1, 0.4, 0.02
 NR, NZ = 13, 3  # grid nodes in r and z

@@ -68,8 +68,8 @@ def test_mu_033_reaches_the_time_loop(tmp_path):
     """mu = 0.33 passed check and died in simulate (`no friction curve for mu = 0.33`, a traceback):
     the contact stage now builds its curve, and simulate's selection (contact_model with the case's
     resolved friction) finds it, plateau at 0.33."""
-    from pipeline.case import clear
-    from pipeline.friction import case_friction
+    from pipeline.config.case import clear
+    from pipeline.caches.friction_curves import case_friction
     from solvers.timeloop.inputs import contact_model
 
     env = _case(tmp_path, "m33", DEFAULT.replace("\nmu = 0.35\n", "\nmu = 0.33\n"))
@@ -91,7 +91,7 @@ def test_mu_033_reaches_the_time_loop(tmp_path):
 def test_presets_and_laws_resolve_to_the_registry():
     """A preset resolves to its law and parameters (the registry's), a law with defaults to its
     full parameter set: the curve's label is the registry's law's."""
-    from pipeline.friction import resolve_friction
+    from pipeline.caches.friction_curves import resolve_friction
     from solvers.contact.friction_laws import PRESETS, get_friction_law
     from solvers.timeloop.inputs import curve_label
 
@@ -122,7 +122,7 @@ def test_contact_points_found_by_check(tmp_path):
 def test_decay_time_of_an_exponential():
     """decay_time against the analytic answer: |g| = exp(-t / tau) has its last 5 % window
     (max at its start, 0.95 T) 66.02 dB below the peak at T = 66.02 tau / (0.95 * 8.686)."""
-    from pipeline.check import DECAY_DB, FOLD_DB, decay_time
+    from pipeline.config.check import DECAY_DB, FOLD_DB, decay_time
 
     dt, tau = 36e-6, 0.01
     t = np.arange(4096) * dt
@@ -134,8 +134,8 @@ def test_decay_time_of_an_exponential():
 
 def _moving_kernel(build: Path, tau: float, dt0: float = 36e-6) -> float:
     """A cached rail kernel whose fixed-point kernel decays as exp(-t / tau); its decay time."""
-    from pipeline.artifacts import save_npz
-    from pipeline.check import decay_time
+    from pipeline.store.artifacts import save_npz
+    from pipeline.config.check import decay_time
 
     g0 = np.exp(-np.arange(4096) * dt0 / tau)[:, None, None] * np.ones((1, 2, 2))
     save_npz(build / "rails" / "bv50" / "moving" / "k.npz", "rail-moving", {"dt": dt0}, rail_fixed_kernel=g0)
@@ -146,7 +146,7 @@ def test_time_step_the_rail_kernel_cannot_decay_in(tmp_path):
     """dt = 20e-6: the greens stage stopped with a traceback (the rail Green's function on Kropp's
     8192 steps had decayed by 47 dB only, not 60, at N_t dt / 2 = 82 ms); check refuses it with
     the reason and the allowed range, from the rail's decay measured on its cached kernel."""
-    from pipeline.greens_stage import RAIL_NT
+    from pipeline.stages.greens import RAIL_NT
 
     env = _case(tmp_path, "dt", DEFAULT.replace("dt = 36e-6", "dt = 20e-6"))
     T = _moving_kernel(tmp_path / "build", tau=0.0145)
@@ -175,7 +175,7 @@ def test_time_step_above_the_models_band(tmp_path):
 
 
 def test_positive_gamma_y_is_explained(tmp_path):
-    from pipeline.check import over_radial_note
+    from pipeline.config.check import over_radial_note
 
     env = _case(tmp_path, "pos", DEFAULT.replace("gamma_y = -0.014", "gamma_y = 0.014"))
     r = _check(env, "pos")

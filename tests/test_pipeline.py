@@ -131,7 +131,7 @@ def test_touching_rail_file_rebuilds_only_rail_stages_and_dependents(built):
 
 
 def test_touching_radiation_source_rebuilds_only_radiate_and_report(built):
-    assert _stages_after_touching("postprocess/radiation.py", built) == ["radiate", "report"]
+    assert _stages_after_touching("solvers/radiation/thompson_jones.py", built) == ["radiate", "report"]
 
 
 def test_make_builds_radiate_artifacts(built):
@@ -159,7 +159,7 @@ def test_killed_stage_leaves_no_complete_artifact(built, tmp_path):
     assert not target.exists()
     assert make("-q", "modes", build=build).returncode != 0
     sys.path.insert(0, str(ROOT))
-    from pipeline.artifacts import ArtifactError, load_npz
+    from pipeline.store.artifacts import ArtifactError, load_npz
 
     with pytest.raises(ArtifactError):
         load_npz(target, "wheel-modes")

@@ -12,8 +12,8 @@ import csv
 
 import numpy as np
 
-from .. import artifacts, paths
-from ..case import resolve_case
+from pipeline.store import artifacts, paths
+from pipeline.config.case import resolve_case
 
 LF_HZ = 200.0
 

@@ -9,11 +9,11 @@ import sys
 
 def check_study(name: str) -> str:
     """A one-line summary of a valid study; ConfigError otherwise."""
-    from .stage import load_study
+    from pipeline.study.stage import load_study
 
     spec, src = load_study(name)
     if spec["kind"] == "line":
-        from .line_input import check
+        from pipeline.study.line_input import check
 
         rows = check(spec)
         return f"{src}: ok (line study, {len(rows)} curves from {spec['curves']})"
@@ -21,7 +21,7 @@ def check_study(name: str) -> str:
 
 
 def main(argv=None) -> int:
-    from ..config import ConfigError
+    from pipeline.config.loader import ConfigError
 
     args = sys.argv[1:] if argv is None else argv
     if len(args) != 1:

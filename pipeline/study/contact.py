@@ -24,11 +24,11 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import paths
-from ..config import config_hash
-from .results_table import ResultsTable
-from .runner import Task, pending, run_tasks
-from .tasks import CreepageTask, ModeTask, Simulation
+from pipeline.store import paths
+from pipeline.config.loader import config_hash
+from pipeline.study.results_table import ResultsTable
+from pipeline.study.runner import Task, pending, run_tasks
+from pipeline.study.tasks import CreepageTask, ModeTask, Simulation
 
 log = logging.getLogger("pipeline.study")
 
@@ -50,9 +50,9 @@ def selected_modes(spec: dict, ctx, quick: bool) -> list[int]:
 def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool = True) -> dict:
     from solvers.study import single_mode_damping
 
-    from ..radiate_stage import load_radiation_model
-    from .context import load_context
-    from .worker import contact_case
+    from pipeline.stages.radiate import load_radiation_model
+    from pipeline.study.context import load_context
+    from pipeline.study.worker import contact_case
 
     sim, mset, cr = spec["simulation"], spec["modes"], spec["creepage"]
     duration = spec["quick"]["duration"] if quick else sim["duration"]
@@ -134,8 +134,8 @@ def _f(x, fmt: str) -> str:
 def write_outputs(spec, src, out: Path, quick, contexts, tasks, table, duration) -> None:
     from postprocess.plots.study import contact_modes_figure, creepage_figure
 
-    from ..artifacts import save_csv
-    from ..atomic import save_figure, save_text
+    from pipeline.store.artifacts import save_csv
+    from pipeline.store.atomic import save_figure, save_text
 
     rows = [table.rows[t.key] for t in tasks if t.key in table.rows]
     modes = paired(rows, "mode", "mode")

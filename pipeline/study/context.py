@@ -13,16 +13,16 @@ from typing import Any
 
 import numpy as np
 
-from .. import artifacts, paths
-from ..code_hash import code_hash as _code_hash
-from ..config import config_hash
+from pipeline.store import artifacts, paths
+from pipeline.store.code_hash import code_hash as _code_hash
+from pipeline.config.loader import config_hash
 
 # the code a study row depends on (hashed into its inputs); missing files are skipped
-CODE = ["solvers/interaction.py", "solvers/timeloop/*.py", "solvers/green.py", "solvers/modal_filter.py",
-        "solvers/partitioned.py", "solvers/study.py", "solvers/spectra.py", "postprocess/spectra.py",
-        "pipeline/study/worker.py", "pipeline/study/tasks.py", "solvers/contact/*.py", "postprocess/radiation.py",
-        "postprocess/radiation_surfaces.py", "postprocess/force_radiation.py", "pipeline/radiate_stage.py",
-        "solvers/receptance.py", "solvers/constants.py"]
+CODE = ["solvers/timeloop/interaction.py", "solvers/timeloop/*.py", "solvers/greens/kernels.py", "solvers/wheel/modal_filter.py",
+        "solvers/timeloop/partitioned.py", "solvers/study.py", "solvers/spectra.py", "solvers/spectra.py",
+        "pipeline/study/worker.py", "pipeline/study/tasks.py", "solvers/contact/*.py", "solvers/radiation/thompson_jones.py",
+        "solvers/radiation/surfaces.py", "solvers/radiation/force_power.py", "pipeline/stages/radiate.py",
+        "solvers/wheel/receptance.py", "solvers/constants.py"]
 
 
 def code_hash() -> str:
@@ -47,10 +47,10 @@ class CaseContext:
     contact: dict
     wheel: dict            # f, mass, zeta, phi (modes, 2), n, m, cls, kind
     rail_kernel: np.ndarray
-    radiation: Any = None  # pipeline.radiate_stage.load_radiation_model(case), or None (not requested)
+    radiation: Any = None  # pipeline.stages.radiate.load_radiation_model(case), or None (not requested)
     radiation_note: str = ""
     extra: dict = field(default_factory=dict)
-    friction: Any = None   # the case's resolved friction (pipeline.friction.Friction); mu: its coefficient
+    friction: Any = None   # the case's resolved friction (pipeline.caches.friction_curves.Friction); mu: its coefficient
 
     @property
     def flexible(self) -> np.ndarray:
@@ -67,10 +67,10 @@ def load_context(case: str, *, radiation: bool = True, zeta_overrides: dict | No
     modes.npz (ArtifactError when missing or stale, naming the make target).  ``zeta_overrides``
     {mode: zeta} only for the radiation model (the simulation's damping is set per task).  ``mus``:
     the friction coefficients the study runs besides the case's own; their curves are built on the
-    case's contact (``pipeline.friction.with_curves``, cached by value)."""
-    from ..contact_stage import contact_inputs
-    from ..friction import case_friction, with_curves
-    from ..greens_stage import greens_inputs
+    case's contact (``pipeline.caches.friction_curves.with_curves``, cached by value)."""
+    from pipeline.stages.contact import contact_inputs
+    from pipeline.caches.friction_curves import case_friction, with_curves
+    from pipeline.stages.greens import greens_inputs
 
     c, _, _, ccfg = contact_inputs(case)
     _, _, _, modes, _, gcfg = greens_inputs(case)      # the wheel modes, checked against the wheel file
@@ -83,7 +83,7 @@ def load_context(case: str, *, radiation: bool = True, zeta_overrides: dict | No
                                       f"{paths.wheel_dir(c['wheel']) / 'modes.npz'}; run `make greens CASE={case}`")
     wheel = {"f": gr["wheel_f"], "mass": gr["wheel_mass"], "zeta": gr["wheel_zeta"], "phi": gr["wheel_phi"],
              "n": modes["n"], "m": modes["m"], "cls": modes["cls"].astype(str), "kind": modes["kind"].astype(str)}
-    from ..radiate_stage import load_radiation_model
+    from pipeline.stages.radiate import load_radiation_model
 
     model = load_radiation_model(case, zeta_overrides) if radiation else None
     note = "" if radiation else "not requested"

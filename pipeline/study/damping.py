@@ -14,12 +14,12 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import paths
-from ..config import config_hash
-from .results_table import ResultsTable
-from ..progress import progress as progress_bar
-from .runner import Task, pending, run_tasks
-from .tasks import DampingTask, Simulation
+from pipeline.store import paths
+from pipeline.config.loader import config_hash
+from pipeline.study.results_table import ResultsTable
+from pipeline.progress import progress as progress_bar
+from pipeline.study.runner import Task, pending, run_tasks
+from pipeline.study.tasks import DampingTask, Simulation
 
 log = logging.getLogger("pipeline.study")
 
@@ -38,8 +38,8 @@ def operating(spec: dict, ctx) -> tuple[float, float]:
 def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool = True) -> dict:
     from solvers.study import Outcome, damping_procedure
 
-    from .context import load_context
-    from .worker import damping_case
+    from pipeline.study.context import load_context
+    from pipeline.study.worker import damping_case
 
     case = spec["cases"][0]
     ctx = load_context(case, radiation=False, mus=[m for m in [spec["operating"]["mu"]] if m is not None])
@@ -88,8 +88,8 @@ def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool 
 def write_outputs(spec, src, out: Path, quick, ctx, mu, gamma_y, bis, result, rows) -> None:
     from postprocess.plots.study import damping_figure
 
-    from ..artifacts import save_csv
-    from ..atomic import save_figure, save_text
+    from pipeline.store.artifacts import save_csv
+    from pipeline.store.atomic import save_figure, save_text
 
     level = spec["simulation"]["squeal_level"]
     steps = []

@@ -1,5 +1,5 @@
 """The line study (``kind = "line"``, issue 27): every curve of a line, for its vehicle and friction
-condition, through the curve verdict screen first (``pipeline.verdict.screen_first``: the stability
+condition, through the curve verdict screen first (``pipeline.curve.screen_first``: the stability
 screen for every wheel of the leading bogie, the time loop, radiation and listening only where the
 screen finds a growing pole), on Dask (``runner``: a local cluster or ``--scheduler ADDR``), one row
 per curve appended to ``table.csv`` as it finishes (resumable), and the comparison with the
@@ -16,23 +16,23 @@ from __future__ import annotations
 import logging
 from pathlib import Path
 
-from .. import paths
-from ..config import config_hash
-from .line_input import LineRow, read_rows, write_curves
-from .line_worker import LineContext, LineTask, band_columns
-from .results_table import ResultsTable
-from .runner import Task, pending, run_tasks
+from pipeline.store import paths
+from pipeline.config.loader import config_hash
+from pipeline.study.line_input import LineRow, read_rows, write_curves
+from pipeline.study.line_worker import LineContext, LineTask, band_columns
+from pipeline.study.results_table import ResultsTable
+from pipeline.study.runner import Task, pending, run_tasks
 
 log = logging.getLogger("pipeline.study")
 
 # the code a row depends on (its syntax trees): the curving, the verdict and every stage it runs
-CODE = ["pipeline/curving.py", "pipeline/curve_schemas.py", "solvers/curving/*.py", "pipeline/verdict/*.py",
-        "pipeline/study/line_worker.py", "pipeline/contact_stage.py", "pipeline/greens_stage.py",
-        "pipeline/simulate_stage.py", "pipeline/radiate_stage.py", "pipeline/listen_stage.py",
-        "pipeline/rail_surface.py", "pipeline/rail_kernel.py", "pipeline/friction.py", "pipeline/case.py",
-        "pipeline/profiles.py", "solvers/stability.py", "solvers/mitigation.py", "solvers/interaction.py",
-        "solvers/timeloop/*.py", "solvers/contact/*.py", "solvers/receptance.py", "solvers/moving_kernel.py",
-        "postprocess/radiation.py", "postprocess/listener.py", "postprocess/exports.py", "solvers/constants.py"]
+CODE = ["pipeline/curve/curving.py", "pipeline/config/curve_schemas.py", "solvers/curving/*.py", "pipeline/curve/*.py",
+        "pipeline/study/line_worker.py", "pipeline/stages/contact.py", "pipeline/stages/greens.py",
+        "pipeline/stages/simulate.py", "pipeline/stages/radiate.py", "pipeline/stages/listen.py",
+        "pipeline/caches/rail_surface_table.py", "pipeline/caches/rail_kernel.py", "pipeline/caches/friction_curves.py", "pipeline/config/case.py",
+        "pipeline/config/case_profiles.py", "solvers/stability/screen.py", "solvers/stability/mitigation.py", "solvers/timeloop/interaction.py",
+        "solvers/timeloop/*.py", "solvers/contact/*.py", "solvers/wheel/receptance.py", "solvers/rail/moving_kernel.py",
+        "solvers/radiation/thompson_jones.py", "postprocess/listening/listener.py", "postprocess/exports.py", "solvers/constants.py"]
 
 ROW_COLUMNS = {"id": str, "chainage_m": float, "radius_m": float, "cant_mm": float, "length_m": float,
                "speed_kmh": float, "vehicle": str, "friction": str, "mu": float}
@@ -53,8 +53,8 @@ def selected(spec: dict, quick: bool) -> list[LineRow]:
 
 def inputs_hash(spec: dict, curve_text: str, vehicle: str) -> str:
     """What a row's result depends on: its curve file, the vehicle, wheel and rail files, the code."""
-    from ..code_hash import code_hash
-    from ..curving import vehicle_file
+    from pipeline.store.code_hash import code_hash
+    from pipeline.curve.curving import vehicle_file
 
     v = vehicle_file(vehicle)
     import tomllib
@@ -79,7 +79,7 @@ def row_inputs(row: LineRow) -> dict:
 
 
 def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool = True) -> dict:
-    from .line_outputs import write_outputs
+    from pipeline.study.line_outputs import write_outputs
 
     rows = selected(spec, quick)
     folder = out / "curves"
@@ -89,7 +89,7 @@ def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool 
     todo = pending(tasks, table)
     stats = {"total": len(tasks), "done_before": len(tasks) - len(todo), "submitted": len(todo)}
     if todo:
-        from .line_worker import line_case, prepare_worker
+        from pipeline.study.line_worker import line_case, prepare_worker
 
         dask = client.get()
         dask.run(prepare_worker)

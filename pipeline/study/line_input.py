@@ -32,9 +32,9 @@ from pathlib import Path
 
 import tomli_w
 
-from .. import paths
-from ..config import ConfigError, Field, validate
-from ..curve_schemas import CURVE
+from pipeline.store import paths
+from pipeline.config.loader import ConfigError, Field, validate
+from pipeline.config.curve_schemas import CURVE
 
 COLUMNS = ("id", "chainage_m", "radius_m", "cant_mm", "length_m", "speed_kmh", "vehicle", "friction")
 NUMERIC = {
@@ -93,7 +93,7 @@ def curves_file(spec: dict) -> Path:
 
 def read_rows(spec: dict, path: Path | None = None) -> list[LineRow]:
     """The validated rows of the study's CSV (module notes); a ConfigError lists every problem."""
-    from ..curving import available_vehicles
+    from pipeline.curve.curving import available_vehicles
 
     path = Path(path or curves_file(spec))
     if not path.exists():
@@ -196,7 +196,7 @@ def curve_data(spec: dict, row: LineRow, name: str) -> dict:
 
 def write_curves(spec: dict, rows: list[LineRow], folder: Path) -> dict[str, str]:
     """Write each row's curve file into ``folder`` (unchanged files untouched); {row key: curve name}."""
-    from ..atomic import save_text
+    from pipeline.store.atomic import save_text
 
     folder.mkdir(parents=True, exist_ok=True)
     names = {}

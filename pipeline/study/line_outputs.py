@@ -7,9 +7,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import paths
-from .line_rules import AGREE_QUIET, AGREE_SQUEAL, MISSED, OVER, RULES, SOURCES, TITLES, rule_columns
-from .line_worker import band_columns
+from pipeline.store import paths
+from pipeline.study.line_rules import AGREE_QUIET, AGREE_SQUEAL, MISSED, OVER, RULES, SOURCES, TITLES, rule_columns
+from pipeline.study.line_worker import band_columns
 
 OUT_COLUMNS = ["id", "chainage_m", "radius_m", "cant_mm", "length_m", "speed_kmh", "vehicle", "friction", "mu",
                "squeals", "wheel", "f_squeal", "mode", "L_pA", "L_W", "L_F2", "squealing_wheels", "unstable_wheels",
@@ -39,7 +39,7 @@ def write_export(spec: dict, out: Path, rows: list[dict]) -> tuple[Path, int]:
     PK_SECTION to the row.  An empty table (header only) when nothing squeals."""
     from postprocess.exports import lw_railway_columns, lw_railway_record
 
-    from ..artifacts import save_csv
+    from pipeline.store.artifacts import save_csv
 
     e = spec["export"]
     flows = {"D": e["passages_day"], "E": e["passages_evening"], "N": e["passages_night"]}
@@ -134,9 +134,9 @@ def markdown(spec: dict, src: str, quick: bool, every: list[dict], total: int, n
 def write_outputs(spec: dict, src: str, out: Path, quick: bool, line_rows, done) -> None:
     from postprocess.plots.line import chainage_figure, level_radius_figure
 
-    from ..artifacts import save_csv
-    from ..atomic import save_figure, save_text
-    from ..verdict.report import cell
+    from pipeline.store.artifacts import save_csv
+    from pipeline.store.atomic import save_figure, save_text
+    from pipeline.curve.verdict_report import cell
 
     every = full_rows([r for r in done if r is not None])
     rows = [r for r in every if not r.get("note")]

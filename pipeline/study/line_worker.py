@@ -1,5 +1,5 @@
 """One row of the line study on a Dask worker: the curve verdict screen first
-(``pipeline.verdict.screen_first``) of one curve, vehicle and friction condition -> one row of scalars.
+(``pipeline.curve.screen_first``) of one curve, vehicle and friction condition -> one row of scalars.
 
 The row reports the loudest squealing wheel of the leading bogie (by L_pA; the curve verdict's
 ``report.loudest``): its id, its squeal frequency and mode, L_pA at the case's listener (7.5 m, 1.2 m),
@@ -43,7 +43,7 @@ def band_levels(case: str) -> np.ndarray:
     """L_W (dB re 1 pW) per NoiseModelling band of a squealing wheel's radiate.npz."""
     from postprocess.exports import band_power, level, nm_band_levels
 
-    from .. import paths
+    from pipeline.store import paths
 
     with np.load(paths.case_dir(case) / "radiate.npz", allow_pickle=False) as a:
         f, W = np.asarray(a["f"], float), np.asarray(a["W"], float)
@@ -53,7 +53,7 @@ def band_levels(case: str) -> np.ndarray:
 
 def summary_row(curve: str, rows: list[dict]) -> dict:
     """The line's row of one curve verdict (module notes)."""
-    from ..verdict.report import loudest
+    from pipeline.curve.verdict_report import loudest
 
     loud = loudest(rows)
     out = {"curve": curve, "squeals": loud is not None,
@@ -107,9 +107,9 @@ def prepare_worker() -> int:
 
 def line_case(ctx: LineContext, t: LineTask) -> dict:
     """The worker's function (``pipeline.study.runner``): the curve's screen-first verdict, summarised."""
-    from ..verdict.screen_first import run_screen_first
+    from pipeline.curve.screen_first import run_screen_first
 
-    from ..config import ConfigError
+    from pipeline.config.loader import ConfigError
 
     os.environ["SQUEAL_CURVE_DIR"] = ctx.curves        # the line's curve files (single-threaded workers)
     try:

@@ -12,11 +12,11 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import paths
-from ..config import config_hash
-from .results_table import ResultsTable
-from .runner import Task, pending, run_tasks
-from .tasks import MapTask, Simulation
+from pipeline.store import paths
+from pipeline.config.loader import config_hash
+from pipeline.study.results_table import ResultsTable
+from pipeline.study.runner import Task, pending, run_tasks
+from pipeline.study.tasks import MapTask, Simulation
 
 log = logging.getLogger("pipeline.study")
 
@@ -38,7 +38,7 @@ def grid_of(spec: dict, quick: bool) -> tuple[np.ndarray, np.ndarray]:
 def map_mus(study: str = "map", quick: bool = False) -> np.ndarray:
     """The friction coefficients of a map study's grid (``pipeline/studies/map.toml``: the one
     home of the map's mu grid)."""
-    from .stage import load_study
+    from pipeline.study.stage import load_study
 
     return grid_of(load_study(study)[0], quick)[1]
 
@@ -52,7 +52,7 @@ def screened(spec: dict, quick: bool) -> dict:
     study sets simulation.screen_margin; else {}."""
     if spec["simulation"].get("screen_margin") is None:
         return {}
-    from .screen import screen_rows
+    from pipeline.study.screen import screen_rows
 
     gammas, mus = grid_of(spec, quick)
     return {case_key(r["case"], r["gamma_y"], r["mu"]): r["sigma_max"]
@@ -77,8 +77,8 @@ def tasks_of(spec: dict, src: str, contexts: dict, quick: bool) -> list[Task]:
 
 
 def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool = True) -> dict:
-    from .context import load_context
-    from .worker import map_case
+    from pipeline.study.context import load_context
+    from pipeline.study.worker import map_case
 
     gammas, mus = grid_of(spec, quick)
     lines = 0                                        # the table's lines so far (a header and a row per case)
@@ -116,8 +116,8 @@ def fields_of(rows: dict, case: str, gammas, mus) -> dict:
 def write_outputs(spec, src, out: Path, quick: bool, contexts: dict, tasks: list, table: ResultsTable) -> None:
     from postprocess.plots.study import map_figure
 
-    from ..artifacts import save_csv
-    from ..atomic import save_figure, save_text
+    from pipeline.store.artifacts import save_csv
+    from pipeline.store.atomic import save_figure, save_text
 
     gammas, mus = grid_of(spec, quick)
     level = spec["simulation"]["squeal_level"]

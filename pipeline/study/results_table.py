@@ -27,7 +27,7 @@ import os
 from pathlib import Path
 from typing import Any, Collection, Iterable, Mapping
 
-from ..artifacts import ArtifactError, atomic_write
+from pipeline.store.artifacts import ArtifactError, atomic_write
 
 log = logging.getLogger("pipeline.study")
 

@@ -22,7 +22,7 @@ import time
 from dataclasses import dataclass
 from typing import Any, Callable, Iterator, Mapping
 
-from .results_table import INPUTS, KEY, ResultsTable
+from pipeline.study.results_table import INPUTS, KEY, ResultsTable
 
 log = logging.getLogger("pipeline.study")
 
@@ -97,7 +97,7 @@ def run_tasks(tasks: list[Task], fn: Callable, table: ResultsTable, client, cont
     name -> object, scattered to all workers once (only those the pending tasks use)."""
     from distributed import as_completed
 
-    from ..progress import progress as progress_bar
+    from pipeline.progress import progress as progress_bar
 
     keys = [t.key for t in tasks]
     if len(set(keys)) != len(keys):

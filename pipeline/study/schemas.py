@@ -1,11 +1,11 @@
-"""Schemas of the study definitions pipeline/studies/<name>.toml (validated by pipeline.config;
+"""Schemas of the study definitions pipeline/studies/<name>.toml (validated by pipeline.config.loader;
 an error names the file, the key, the value and what is allowed).  One schema per kind;
 ``kind`` picks it."""
 from __future__ import annotations
 
 from solvers.constants import F_MAX_HZ, SQUEAL_LEVEL_DB
 
-from ..config import Field, ListOf
+from pipeline.config.loader import Field, ListOf
 
 KINDS = ("map", "damping", "contact", "line")
 
@@ -20,10 +20,10 @@ COMMON = {
 
 SIMULATION = {
     "duration": Field(float, unit="s", min=0.01, max=8.0, default=8.0, doc="at most this much rolling (SPEC 6)"),
-    "early_stop": Field(bool, default=True, doc="stop at a limit cycle or after decay (solvers.interaction.StopRule)"),
+    "early_stop": Field(bool, default=True, doc="stop at a limit cycle or after decay (solvers.timeloop.interaction.StopRule)"),
     "final": Field(float, unit="s", min=0.01, max=2.0, default=0.5, doc="stretch the measures are taken over"),
     "window": Field(float, unit="s", min=0.01, max=2.0, default=0.25,
-                    doc="window of the early-stop rule (solvers.interaction.StopRule; 0.25 s as the simulate stage)"),
+                    doc="window of the early-stop rule (solvers.timeloop.interaction.StopRule; 0.25 s as the simulate stage)"),
     "squeal_level": Field(float, unit="dB", min=-100.0, max=200.0, default=SQUEAL_LEVEL_DB,
                           doc="squeal when L_F2 >= this; sound power only then (SPEC 6)"),
     "screen_margin": Field(float, unit="1/s", min=0.0, max=1000.0, default=None,

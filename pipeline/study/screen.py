@@ -1,4 +1,4 @@
-"""Stability map: the screen (``solvers.stability``) at every (gamma_y, mu) of a map study's grid
+"""Stability map: the screen (``solvers.stability.screen``) at every (gamma_y, mu) of a map study's grid
 and contact positions, in seconds; and its agreement with the time loop's map where that exists.
 
     python -m pipeline stability_map --study map [--quick]      (make stability-map STUDY=map [QUICK=1])
@@ -20,8 +20,8 @@ import time
 
 import numpy as np
 
-from .. import artifacts, paths
-from ..atomic import save_figure
+from pipeline.store import artifacts, paths
+from pipeline.store.atomic import save_figure
 
 log = logging.getLogger("pipeline.stability")
 COLUMNS = ["case", "dy_wr", "gamma_y", "mu", "sigma_max", "f_max", "label_max", "sigma_lf", "label_na", "sigma_na"]
@@ -31,8 +31,8 @@ def grid_roots(lm0, con, v: float, gammas, mus, mu_lm0: float | None = None):
     """Yield (mu, gamma_y, roots) of the screen at every (gamma_y, mu): one ``Basis`` of ``lm0``'s
     structures, one linearisation per mu (``lm0`` itself at ``mu_lm0``), the operating point per
     creepage.  ``con``: the contact artifact's arrays; v: rolling speed (m/s)."""
-    from solvers.interaction import contact_model
-    from solvers.stability import Basis, linearise, operating_point, screen
+    from solvers.timeloop.interaction import contact_model
+    from solvers.stability.screen import Basis, linearise, operating_point, screen
 
     basis = Basis(lm0)
     for mu in mus:
@@ -45,10 +45,10 @@ def grid_roots(lm0, con, v: float, gammas, mus, mu_lm0: float | None = None):
 
 def screen_rows(case: str, gammas, mus) -> list[dict]:
     """The screen at every (gamma_y, mu) of one case's position."""
-    from ..stability_stage import case_linear_model
+    from pipeline.stages.stability import case_linear_model
 
     c, lm0, labels, _ = case_linear_model(case)
-    from ..friction import case_friction, with_curves
+    from pipeline.caches.friction_curves import case_friction, with_curves
 
     con, _ = artifacts.load_npz(paths.case_dir(case) / "contact.npz", "contact")
     con = with_curves(case, con, [float(m) for m in mus])
@@ -67,14 +67,14 @@ def screen_rows(case: str, gammas, mus) -> list[dict]:
 
 
 def _wheel(lm):
-    from solvers.interaction import WheelModes
+    from solvers.timeloop.interaction import WheelModes
 
     return WheelModes(lm.f_r, lm.modal_mass, lm.zeta, lm.phi)
 
 
 def run_stability_map(study: str, quick: bool = False) -> str:
-    from .map import grid_of
-    from .stage import load_study
+    from pipeline.study.map import grid_of
+    from pipeline.study.stage import load_study
 
     spec, _ = load_study(study)
     gammas, mus = grid_of(spec, quick)
@@ -90,7 +90,7 @@ def run_stability_map(study: str, quick: bool = False) -> str:
     log.info("stability map %s: %d cases in %.2f s (%.1f ms per case) -> %s", study, len(rows), wall,
              1e3 * wall / max(len(rows), 1), out / "stability.csv")
     if (out / "map.csv").exists():
-        from .agreement import write_agreement
+        from pipeline.study.agreement import write_agreement
 
         write_agreement(out, rows, spec)
     return str(out / "stability.csv")

@@ -25,9 +25,9 @@ import time
 import tomllib
 from pathlib import Path
 
-from .. import artifacts, paths
-from ..config import ConfigError, load
-from .schemas import COMMON, KINDS, SCHEMAS
+from pipeline.store import artifacts, paths
+from pipeline.config.loader import ConfigError, load
+from pipeline.study.schemas import COMMON, KINDS, SCHEMAS
 
 log = logging.getLogger("pipeline.study")
 
@@ -35,7 +35,7 @@ log = logging.getLogger("pipeline.study")
 
 def _kind_module(kind: str):
     """The module that runs a study of this kind: ``run(spec, src, out, ...)``."""
-    from . import contact, damping, line, map
+    from pipeline.study import contact, damping, line, map
 
     return {"map": map, "damping": damping, "contact": contact, "line": line}[kind]
 
@@ -81,7 +81,7 @@ class LazyClient:
             self._starting.start()
 
     def _start_quietly(self) -> None:
-        from .runner import local_cluster
+        from pipeline.study.runner import local_cluster
 
         try:
             self._cluster = local_cluster(self.workers)
@@ -96,7 +96,7 @@ class LazyClient:
     def get(self):
         self._join()
         if self._client is None:
-            from .runner import study_client
+            from pipeline.study.runner import study_client
 
             t0 = getattr(self, "_t0", None) or time.perf_counter()
             cluster, self._cluster = self._cluster, None

@@ -3,7 +3,7 @@ scalars) for the study runner.  The context (pipeline.study.context.CaseContext)
 per worker process; what derives from it (the contact model of each mu) is cached per process,
 and numba is warmed once per process before the first case is timed.
 
-Every case simulates with solvers.interaction.simulate from the steady rolling state plus a
+Every case simulates with solvers.timeloop.interaction.simulate from the steady rolling state plus a
 lateral kick (SPEC 3.5; the simulation's default 0.01 N s unless the task sets one), at most
 ``duration`` s, stopping early at a limit cycle or after decay unless ``early_stop`` is false;
 squeal measures over the final stretch (``final``, 0.5 s as SPEC 6 by default); sound power
@@ -16,10 +16,10 @@ import math
 
 import numpy as np
 
-from solvers.interaction import StopRule, WheelModes, contact_model, simulate
+from solvers.timeloop.interaction import StopRule, WheelModes, contact_model, simulate
 from solvers.study import harmonic_response, periodic_creepage, squeals
 
-from .tasks import CreepageTask, DampingTask, MapTask, ModeTask, Simulation
+from pipeline.study.tasks import CreepageTask, DampingTask, MapTask, ModeTask, Simulation
 
 _CONTACT: dict = {}
 _WARM: set = set()
@@ -72,7 +72,7 @@ def _measures(ctx, res, sim: Simulation, radiation=CASE_MODEL) -> dict:
            "L_W": NAN, "f_sound": NAN}
     model = ctx.radiation if radiation is CASE_MODEL else radiation
     if model is not None and squeals(m["L_F2"], sim.level):
-        from ..radiate_stage import sound_power_of_forces
+        from pipeline.stages.radiate import sound_power_of_forces
 
         s = sound_power_of_forces(model, res.F_final, res.dt_final or res.dt)
         row["L_W"], row["f_sound"] = float(s["L_W"]), float(s["f_sound"])

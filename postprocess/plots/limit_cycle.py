@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..limit_cycle import curve
+from postprocess.limit_cycle_measures import curve
 
 def _plt():
     import matplotlib

@@ -12,7 +12,7 @@ def forces_figure(res, m: dict, case: str):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from postprocess.spectra import amplitude_spectrum
+    from solvers.spectra import amplitude_spectrum
 
     fig, axs = plt.subplots(3, 1, figsize=(9, 8))
     axs[0].plot(res.t, res.F[:, 1] / 1e3, lw=0.5)

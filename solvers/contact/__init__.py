@@ -7,13 +7,12 @@ tractions act on the rail, u = u(rail) - u(wheel), slip = rail relative to wheel
 so F2 = -c^2 G C22 gamma_y in the linear range.  All functions take arrays on the
 grid (any gap: Hertzian or from real profiles) and SI units.
 """
-from .compliance import compliance_table, contact_compliance, table_compliance
-from .friction import RFCurve, mu_rf, rf_curve
-from .friction_laws import LAWS, PRESETS, FrictionLaw, get_friction_law, mu_of
-from .influence import boussinesq, cerruti, dense_matrix, normal_kernel, tangential_kernels
-from .norm import (NormalContact, NormTable, approach_for_load, norm, norm_table, table_force,
-                   table_midpoint_error, table_pressure)
-from .tang import TangentialContact, rigid_slip, tang_steady, tang_transient
+from solvers.contact.compliance import compliance_table, contact_compliance, table_compliance
+from solvers.contact.friction import RFCurve, mu_rf, rf_curve
+from solvers.contact.friction_laws import LAWS, PRESETS, FrictionLaw, get_friction_law, mu_of
+from solvers.contact.influence import boussinesq, cerruti, dense_matrix, normal_kernel, tangential_kernels
+from solvers.contact.norm import NormalContact, NormTable, approach_for_load, norm, norm_table, table_force, table_midpoint_error, table_pressure
+from solvers.contact.tang import TangentialContact, rigid_slip, tang_steady, tang_transient
 
 __all__ = [
     "boussinesq", "cerruti", "normal_kernel", "tangential_kernels", "dense_matrix",

@@ -22,7 +22,7 @@ import functools
 import numba
 import numpy as np
 
-from .influence import Convolver, tangential_kernels
+from solvers.contact.influence import Convolver, tangential_kernels
 
 
 @functools.lru_cache(maxsize=8)

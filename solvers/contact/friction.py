@@ -41,8 +41,8 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
-from .friction_laws import FrictionLaw, as_law
-from .tang import tang_steady
+from solvers.contact.friction_laws import FrictionLaw, as_law
+from solvers.contact.tang import tang_steady
 
 GAMMA_END = 0.05       # |gamma_y| at the end of the thesis' ramp [4.36]
 

@@ -34,7 +34,7 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
-MU_MAX = 1.0            # the project's range of a friction coefficient (pipeline.config: 0 < mu <= 1)
+MU_MAX = 1.0            # the project's range of a friction coefficient (pipeline.config.loader: 0 < mu <= 1)
 COULOMB, LINEAR, RATIONAL, EXPONENTIAL, POLACH = 0, 2, 3, 4, 5
 LN2 = math.log(2.0)
 

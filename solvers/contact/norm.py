@@ -29,7 +29,7 @@ import numba
 import numpy as np
 from scipy.fft import next_fast_len
 
-from .influence import Convolver, normal_kernel, strang_inverse_symbol
+from solvers.contact.influence import Convolver, normal_kernel, strang_inverse_symbol
 
 
 class NormalContact(NamedTuple):

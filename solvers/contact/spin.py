@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .tang import tang_steady
+from solvers.contact.tang import tang_steady
 
 _LINEAR = 1e-8       # creepage [-] / spin x patch size of the no-slip solves
 _MU_NO_SLIP = 1e6    # a friction bound too high to be reached

@@ -28,9 +28,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..contact.influence import shear_modulus
+from solvers.contact.influence import shear_modulus
 
-from .hertz import hertz_semi_axes
+from solvers.curving.hertz import hertz_semi_axes
 
 RATIOS = np.geomspace(0.1, 10.0, 13)   # a/b where the coefficients are computed
 TANG_ELEMENTS = 40                     # elements across each semi-axis pair (the ellipse's box)
@@ -39,7 +39,7 @@ TANG_ELEMENTS = 40                     # elements across each semi-axis pair (th
 def tang_coefficients(ratio: float, E: float = 210e9, nu: float = 0.3, n: int = TANG_ELEMENTS):
     """(C11, C22, C23) from steady TANG on the Hertz pressure of an ellipse a/b = ratio (no slip:
     mu large, creepages 1e-6 and spin 1e-4 1/m on a c = 5 mm patch)."""
-    from ..contact.tang import tang_steady
+    from solvers.contact.tang import tang_steady
 
     c = 5e-3
     a, b = c * math.sqrt(ratio), c / math.sqrt(ratio)

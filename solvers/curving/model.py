@@ -38,8 +38,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .creep import CreepLaw, creep_forces
-from .wheelrail import zone_point
+from solvers.curving.creep import CreepLaw, creep_forces
+from solvers.curving.wheelrail import zone_point
 
 G_ACC = 9.81
 

@@ -28,7 +28,7 @@ PLATEAU = 1.0   # width (in w, mm) of a two-point tread contact's load transfer
 
 def _events(prof, trk, y_f):
     """The tread jumps of both wheels within the flange shifts: [(y_j, side, y^W before, y^W after)]."""
-    from .wheelrail import tread_jumps
+    from solvers.curving.wheelrail import tread_jumps
 
     ev = [(y, s, a, b) for s in (1, -1) for y, a, b in
           tread_jumps(prof.wheel, prof.rail, trk.c, prof.edge, s, min(y_f, 0.04))]
@@ -81,7 +81,7 @@ class Complementarity:
         return w
 
     def residual(self, w):
-        from .solve import _safe
+        from solvers.curving.solve import _safe
 
         z, states = self.split(w)
         return _safe(self.fun_of, states, self.y_f, *self.args)(z)
@@ -93,7 +93,7 @@ def semismooth(fun_of, starts, y_f, prof, veh, trk, law, n_ws):
     first, one more start is tried, so that a second equilibrium (another branch) can be reported."""
     from scipy.optimize import root
 
-    from .solve import _newton
+    from solvers.curving.solve import _newton
 
     cp = Complementarity(fun_of, n_ws, y_f, prof, veh, trk, law)
     fun = cp.residual

@@ -20,9 +20,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .creep import CreepLaw
-from .model import Profiles, Track, Vehicle, box_loads, wheel_contacts, wheelset_residual
-from .wheelrail import flange_shift
+from solvers.curving.creep import CreepLaw
+from solvers.curving.model import Profiles, Track, Vehicle, box_loads, wheel_contacts, wheelset_residual
+from solvers.curving.wheelrail import flange_shift
 
 TOL = 1e-10          # residuals / (Q0, Q0 * 1 m) required
 MAX_ACTIVE = 8       # active-set passes
@@ -286,7 +286,7 @@ def solve(prof: Profiles, veh: Vehicle, trk: Track, law: CreepLaw, bogie: bool =
     notes = []
     if keep is None or np.max(np.abs(r)) > 1e-8:
         stalled.sort(key=lambda s: s[0])
-        from .semismooth import semismooth
+        from solvers.curving.semismooth import semismooth
 
         found = semismooth(fun_of, [s[1:] for s in stalled] + tried, y_f, prof, veh, trk, law, n_ws)
         if found:

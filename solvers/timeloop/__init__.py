@@ -1,1 +1,1 @@
-"""The wheel/rail time loop, one idea a module (notes and public names: ``solvers.interaction``)."""
+"""The wheel/rail time loop, one idea a module (notes and public names: ``solvers.timeloop.interaction``)."""

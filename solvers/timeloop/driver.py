@@ -1,4 +1,4 @@
-"""The time loop's driver (notes in ``solvers.interaction``): a run's settings as one named
+"""The time loop's driver (notes in ``solvers.timeloop.interaction``): a run's settings as one named
 structure, the reference state, the structures' per-step objects, the choice between the numba
 loop and the Python reference loop, and the result."""
 from __future__ import annotations
@@ -9,14 +9,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..contact.compliance import table_compliance
-from ..modal_filter import ModalFilter, modal_filter
-from ..partitioned import DEFAULT_BLOCK, PartitionedConvolver, partitioned_convolver
-from .inputs import (DEFAULT_KICK, EPS_SLIP, MAX_DURATION, ContactModel, LoopParams, WheelModes, per_step,
-                     point_tables, static_approach, steady_forces)
-from .kernel import run_point
-from .result import InteractionResult, assemble, record
-from .stop import StopRule, windows
+from solvers.contact.compliance import table_compliance
+from solvers.wheel.modal_filter import ModalFilter, modal_filter
+from solvers.timeloop.partitioned import DEFAULT_BLOCK, PartitionedConvolver, partitioned_convolver
+from solvers.timeloop.inputs import DEFAULT_KICK, EPS_SLIP, MAX_DURATION, ContactModel, LoopParams, WheelModes, per_step, point_tables, static_approach, steady_forces
+from solvers.timeloop.kernel import run_point
+from solvers.timeloop.result import InteractionResult, assemble, record
+from solvers.timeloop.stop import StopRule, windows
 
 
 @dataclass(frozen=True)
@@ -36,7 +35,7 @@ class RunSettings:
     mu_RF(0) = 0, else EPS_SLIP); driver: 'auto' (numba for table + point + table compliance,
     else the Python reference loop) or 'python' (force the reference loop, for testing);
     rail_block: head length of the rail's partitioned FFT convolution (exact,
-    ``solvers.partitioned``), None for the direct sum; spin [1/m]: a number or a per-step
+    ``solvers.timeloop.partitioned``), None for the direct sum; spin [1/m]: a number or a per-step
     history like the creepages (the point contact: as equivalent creepages, ``timeloop.kernel``;
     Kalker's TANG: in the rigid slip)."""
     dt: float
@@ -79,7 +78,7 @@ def wheel_filter(wheel: WheelModes | None, dt: float) -> ModalFilter:
 
 
 def rail_convolver(rail_kernel: np.ndarray | None, block: int | None = DEFAULT_BLOCK) -> PartitionedConvolver:
-    """The rail's convolver at rest (solvers.partitioned): exact partitioned FFT convolution with a
+    """The rail's convolver at rest (solvers.timeloop.partitioned): exact partitioned FFT convolution with a
     direct head of ``block`` lags, or the plain direct sum with block=None (the reference)."""
     g = np.zeros((1, 2, 2)) if rail_kernel is None else np.asarray(rail_kernel, float)
     if g.ndim != 3 or g.shape[1:] != (2, 2):
@@ -121,8 +120,8 @@ def spin_length(contact: ContactModel, xi3_static: float, v: float) -> np.ndarra
         return np.asarray(contact.spin_length, float).reshape(2)
     if contact.pressure_nodes is None or contact.dx is None or contact.dy is None:
         raise ValueError("spin needs the contact's spin_length or its pressure table (pressure_nodes, dx, dy)")
-    from ..contact.norm import NormTable, table_pressure
-    from ..contact.spin import spin_lengths
+    from solvers.contact.norm import NormTable, table_pressure
+    from solvers.contact.spin import spin_lengths
 
     table = NormTable(contact.xi3_nodes, contact.F3_nodes, contact.q_nodes, contact.pressure_nodes,
                       contact.pressure_nodes > 0)
@@ -131,7 +130,7 @@ def spin_length(contact: ContactModel, xi3_static: float, v: float) -> np.ndarra
 
 def simulate(wheel: WheelModes | None, rail_kernel: np.ndarray | None, contact: ContactModel,
              settings: RunSettings | None = None, **overrides) -> InteractionResult:
-    """Run the wheel/rail interaction (notes in ``solvers.interaction``).
+    """Run the wheel/rail interaction (notes in ``solvers.timeloop.interaction``).
 
     wheel: WheelModes (None: rigid fixed wheel); rail_kernel: the rail's moving Green's function
     g_mov (n_k, 2, 2) in m/N (None: rigid rail); contact: ContactModel; settings: RunSettings,
@@ -156,7 +155,7 @@ def simulate(wheel: WheelModes | None, rail_kernel: np.ndarray | None, contact: 
     if s.tangential == "point" and s.normal == "table" and s.compliance == "table" and s.driver == "auto":
         done, reason = run_point(filt, rc, p, point_tables(contact), rec, win)
     else:
-        from .reference import run_reference          # (Kalker's TANG, NORM: imported when needed)
+        from solvers.timeloop.reference import run_reference          # (Kalker's TANG, NORM: imported when needed)
 
         done, reason, F_ref = run_reference(filt, rc, p, contact, rec, win, tangential=s.tangential,
                                             normal=s.normal, compliance=s.compliance, start=s.start)

@@ -1,7 +1,7 @@
 """Inputs of the time loop (SPEC 3.1, 4.1-4.4): the wheel's modal data, the contact model of a
 case, the reference (steady rolling) state, and the loop's parameters as one named structure.
 
-Pure numerics; the physics of the loop is in the notes of ``solvers.interaction``.
+Pure numerics; the physics of the loop is in the notes of ``solvers.timeloop.interaction``.
 """
 from __future__ import annotations
 
@@ -10,8 +10,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..contact.friction import mu_rf
-from ..contact.norm import table_force
+from solvers.contact.friction import mu_rf
+from solvers.contact.norm import table_force
 
 MAX_DURATION = 8.0          # s, SPEC 6
 EPS_SLIP = 1e-9             # m/s, regularisation of the slip direction (curves with mu(0) > 0)
@@ -98,7 +98,7 @@ def contact_model(arrays, law) -> ContactModel:
     curve = f("rf_s")[i, :n].copy(), f("rf_mu")[i, :n].copy(), f("rf_slope")[i, :n].copy()
     solver_law = _solver_law(law)
     if solver_law is not None:                 # issue 26: a falling law's decay beyond the last node
-        from ..contact.falling import with_law_tail
+        from solvers.contact.falling import with_law_tail
 
         curve = with_law_tail(*curve, solver_law)
     return ContactModel(f("xi3_nodes"), f("q_nodes"), f("A1_nodes"), f("A2_nodes"), *curve,
@@ -125,8 +125,8 @@ def refine_table(contact: ContactModel, xi3_nodes) -> ContactModel:
     falls below 1e-6 for a node step of ~5e-4 of the static approach (coarser steps leave ~1e-6
     where a grid element enters the patch and F3(xi3) has a kink): use it to make the table mode
     reproduce per-step NORM to 1e-6 over the range a run visits."""
-    from ..contact.compliance import compliance_table
-    from ..contact.norm import norm_table
+    from solvers.contact.compliance import compliance_table
+    from solvers.contact.norm import norm_table
 
     if contact.gap is None or contact.dx is None or contact.dy is None:
         raise ValueError("refine_table needs the contact's gap, dx and dy")

@@ -1,5 +1,5 @@
 """The reference driver's steps with Kalker's transient TANG on the NORM table, compiled (notes in
-``solvers.interaction``): the steps of ``reference.run_reference`` (normal='table',
+``solvers.timeloop.interaction``): the steps of ``reference.run_reference`` (normal='table',
 tangential='kalker') while the contact keeps its working window, so that a step costs its
 contact solve and not the Python around it.  A step that needs Python (the contact lost or
 its window changed: a new operator) is left to the driver, which then resumes here.  Same
@@ -8,13 +8,13 @@ from __future__ import annotations
 
 import numba
 
-from ..contact.norm import _table_pressure, table_force
-from ..contact.tang_pcg import transient_step
-from ..contact.tang_rolling import MAX_ITER, PAD
-from ..contact.tang_state import W_OFFSET
-from ..contact.tang_steps import contact_elements, working_window
-from .kernel import advance
-from .result import store
+from solvers.contact.norm import _table_pressure, table_force
+from solvers.contact.tang.pcg import transient_step
+from solvers.contact.tang.rolling import MAX_ITER, PAD
+from solvers.contact.tang.state import W_OFFSET
+from solvers.contact.tang.steps import contact_elements, working_window
+from solvers.timeloop.kernel import advance
+from solvers.timeloop.result import store
 
 
 @numba.njit(cache=True)

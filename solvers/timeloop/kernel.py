@@ -1,4 +1,4 @@
-"""The numba time loop (table NORM, point-contact model; notes in ``solvers.interaction``): the
+"""The numba time loop (table NORM, point-contact model; notes in ``solvers.timeloop.interaction``): the
 tangential point-contact solve of one step [4.25]-[4.31], the end-of-step update of the
 structures [4.13], [4.15] shared with the reference driver, and the loop itself.
 
@@ -16,14 +16,14 @@ import math
 import numba
 import numpy as np
 
-from ..contact.compliance import table_compliance
-from ..contact.friction import mu_and_slope
-from ..contact.norm import table_force
-from ..modal_filter import filter_step
-from ..partitioned import partitioned_step
-from .inputs import FULL_SLIP
-from .result import store
-from .stop import record_window
+from solvers.contact.compliance import table_compliance
+from solvers.contact.friction import mu_and_slope
+from solvers.contact.norm import table_force
+from solvers.wheel.modal_filter import filter_step
+from solvers.timeloop.partitioned import partitioned_step
+from solvers.timeloop.inputs import FULL_SLIP
+from solvers.timeloop.result import store
+from solvers.timeloop.stop import record_window
 
 
 @numba.njit(cache=True)

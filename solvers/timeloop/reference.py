@@ -1,4 +1,4 @@
-"""The reference driver of the time loop (notes in ``solvers.interaction``): the same loop as
+"""The reference driver of the time loop (notes in ``solvers.timeloop.interaction``): the same loop as
 ``kernel.run_point`` in Python, with per-step NORM, the literal compliance [4.32]-[4.35] and/or
 Kalker's transient TANG, built from the same njit blocks."""
 from __future__ import annotations
@@ -7,17 +7,17 @@ import warnings
 
 import numpy as np
 
-from ..contact.compliance import contact_compliance, table_compliance
-from ..contact.friction import mu_rf
-from ..contact.norm import NormTable, norm, table_force, table_pressure
-from ..contact.tang import tang_steady, tang_transient
-from ..contact.tang_operator import tangential_operator
-from ..contact.tang_state import History, TangentialContact
-from .kalker import kalker_steps, slip_summary
-from .inputs import FULL_SLIP, KALKER_TOL, ContactModel, LoopParams
-from .kernel import advance, point_contact
-from .result import Record, store
-from .stop import Windows
+from solvers.contact.compliance import contact_compliance, table_compliance
+from solvers.contact.friction import mu_rf
+from solvers.contact.norm import NormTable, norm, table_force, table_pressure
+from solvers.contact.tang import tang_steady, tang_transient
+from solvers.contact.tang.operator import tangential_operator
+from solvers.contact.tang.state import History, TangentialContact
+from solvers.timeloop.kalker import kalker_steps, slip_summary
+from solvers.timeloop.inputs import FULL_SLIP, KALKER_TOL, ContactModel, LoopParams
+from solvers.timeloop.kernel import advance, point_contact
+from solvers.timeloop.result import Record, store
+from solvers.timeloop.stop import Windows
 
 
 def _check(c: ContactModel, p: LoopParams, tangential: str, normal: str, compliance: str):

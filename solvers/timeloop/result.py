@@ -8,8 +8,8 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
-from ..spectra import amplitude_spectrum, dominant_frequency, force_level
-from .stop import STOP_REASONS, Windows
+from solvers.spectra import amplitude_spectrum, dominant_frequency, force_level
+from solvers.timeloop.stop import STOP_REASONS, Windows
 
 # columns of the stored histories
 COLUMNS = ("F1", "F2", "F3", "s1", "s2", "xi2", "xi3", "state")

@@ -8,7 +8,7 @@ P_r = phi_r(a) . dF_a + phi_r(b) . dF_b, and return the displacement at both (ph
 the shapes at the two points, each in its own contact frame): the modal sum gives the point and
 the cross receptances exactly.  The rail's moving kernel at two head points is a 4 x 4 kernel of
 2 x 2 blocks g_pq (response at p to a force at q), convolved together by the exact frequency-domain
-MIMO convolver (``solvers.mimo_partitioned``: the one-point loop's overlap-save partitions, a
+MIMO convolver (``solvers.timeloop.mimo_partitioned``: the one-point loop's overlap-save partitions, a
 vectorised head, one FFT per point's forces and one per point's displacements, the second point's
 forces skipped while they are zero).  xi_p = xi^R_p - xi^W_p as in the one-point loop.
 
@@ -17,7 +17,7 @@ approach (static approach of the point minus its relative displacement along its
 creepages and tables.  Point a is the one-point loop's point: when point b carries no load (its
 approach never reaches its table), every force deviation of b is zero, its contributions to the
 filters and convolutions are exact zeros and point a's records are the one-point loop's bit for
-bit (the MIMO convolver gathers g_aa's head as ``solvers.partitioned`` does until b's first force;
+bit (the MIMO convolver gathers g_aa's head as ``solvers.timeloop.partitioned`` does until b's first force;
 tests/interaction/test_two_point.py).
 """
 from __future__ import annotations
@@ -27,18 +27,18 @@ from typing import NamedTuple
 import numba
 import numpy as np
 
-from ..contact.compliance import table_compliance
-from ..contact.norm import table_force
-from ..modal_filter import FilterState, modal_filter
-from ..mimo_partitioned import mimo_step
-from .inputs import FULL_SLIP
-from .kernel import _point_contact
-from .result import store
-from .stop import record_window
+from solvers.contact.compliance import table_compliance
+from solvers.contact.norm import table_force
+from solvers.wheel.modal_filter import FilterState, modal_filter
+from solvers.timeloop.mimo_partitioned import mimo_step
+from solvers.timeloop.inputs import FULL_SLIP
+from solvers.timeloop.kernel import _point_contact
+from solvers.timeloop.result import store
+from solvers.timeloop.stop import record_window
 
 
 class TwoPointFilter(NamedTuple):
-    """The wheel's recursive modal filters (``solvers.modal_filter.ModalFilter``) with inputs and
+    """The wheel's recursive modal filters (``solvers.wheel.modal_filter.ModalFilter``) with inputs and
     outputs at two points: w_in, w_out (M, 4) = (a2, a3, b2, b3); u_coef (10, M0) = Re z, Im z,
     w_in (4 rows), w_out (4 rows) of the kind-0 modes; state advanced IN PLACE."""
     kind: np.ndarray
@@ -64,7 +64,7 @@ def two_point_filter(dt: float, f_r, modal_mass, zeta, phi_a, phi_b) -> TwoPoint
 @numba.njit(cache=True)
 def filter_step2(filt, F2a, F3a, F2b, F3b):
     """njit: push the forces of step n at both points into the modal filters; return the
-    displacements (xi2a, xi3a, xi2b, xi3b) at step n + 1 (``solvers.modal_filter.filter_step``
+    displacements (xi2a, xi3a, xi2b, xi3b) at step n + 1 (``solvers.wheel.modal_filter.filter_step``
     with the second point's terms added after the first's)."""
     kind, z, p2, w_in, w_out, uc, over, state = filt
     q, a, us = state

@@ -6,7 +6,7 @@ approach (d - e_k) cos(delta_k): e_k is the patch's extra rigid separation (vert
 the first contact, e_b the contact stage's ``second_zone``), delta_k its contact angle (0 when the
 forces are in the track's directions, ``[contact] angle = "none"``).  The vertical load Q is
 carried by the normal forces, Q = sum_k N_k cos(delta_k) (frictionless static contact, as for one
-point: ``solvers.contact_frame``); d by bisection.  When the second patch is not reached at the
+point: ``solvers.contact.frame``); d by bisection.  When the second patch is not reached at the
 one-point approach, the state is the one-point loop's exactly.
 
 The patches are independent half-space contacts (each its own NORM table and compliance): the
@@ -22,14 +22,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..contact.norm import table_force
-from ..mimo_partitioned import mimo_convolver
-from ..partitioned import DEFAULT_BLOCK
-from .driver import RunSettings, loop_params
-from .inputs import ContactModel, WheelModes, point_tables, static_approach
-from .result import InteractionResult, assemble, record, squeal_measures
-from .stop import windows
-from .two_point import two_point_filter, run_two_points
+from solvers.contact.norm import table_force
+from solvers.timeloop.mimo_partitioned import mimo_convolver
+from solvers.timeloop.partitioned import DEFAULT_BLOCK
+from solvers.timeloop.driver import RunSettings, loop_params
+from solvers.timeloop.inputs import ContactModel, WheelModes, point_tables, static_approach
+from solvers.timeloop.result import InteractionResult, assemble, record, squeal_measures
+from solvers.timeloop.stop import windows
+from solvers.timeloop.two_point import two_point_filter, run_two_points
 
 
 @dataclass(frozen=True)

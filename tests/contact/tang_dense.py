@@ -1,9 +1,9 @@
-"""Dense reference for TANG (the former solver of solvers/contact/tang.py, kept as a test oracle):
+"""Dense reference for TANG (the former solver of solvers/contact/tang/__init__.py, kept as a test oracle):
 the same discrete equations with the influence matrix of the contact elements formed explicitly
 and every Newton system solved by a dense LU.  O(n^3); small grids only.
 
     s = r + M p,   M = A - A(x + dx) (steady) or A (transient),
-    stick s = 0, |p| <= g;  slip |p| = g, p = -g s / |s|      (solvers/contact/tang.py)
+    stick s = 0, |p| <= g;  slip |p| = g, p = -g s / |s|      (solvers/contact/tang/__init__.py)
 
 Kalker's active-set Newton method: stick unknowns (p1, p2), slip unknown theta; one Newton step,
 then stick elements beyond the bound move to slip and slip elements whose slip points along the

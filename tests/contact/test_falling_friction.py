@@ -2,7 +2,7 @@
 its printed numbers and every input in tests/contact/contact_peer.py): force vs creepage,
 lateral and longitudinal, with and without spin, on a Hertzian contact, for CONTACT's
 exponential (L=4), rational (L=3) and linear (L=2) falling laws.  The project's steady TANG
-with the local coefficient mu(|s|) (solvers.contact.tang_falling) agrees within 0.5 %.
+with the local coefficient mu(|s|) (solvers.contact.tang.falling) agrees within 0.5 %.
 Transient rolling with the law against CONTACT step by step.  The validation test writes
 docs/validation/33_contact_peer.md (with the two-patch
 comparison of test_two_patch.py)."""
@@ -73,7 +73,7 @@ def test_contact_peer_report(contact):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from pipeline.atomic import save_text
+    from pipeline.store.atomic import save_text
     from solvers.contact.friction import rf_curve
     from solvers.contact.friction_laws import get_friction_law, preset
     from solvers.contact.norm import approach_for_load
@@ -180,7 +180,7 @@ MEM_S0 in mm/s): {laws}.  Without a MEMDST the law is instantaneous (MEMDST = 0)
 friction memory (MEMDST = 0.003 mm, its tractcurv example's value); slip velocity approximated from below
 (INISLP = 1), every case from scratch.  Creepages {", ".join(f"{c:g}" for c in CREEP)}: lateral CETA = -c, longitudinal CKSI = +c,
 without spin and with spin CPHI = 6.25e-4 rad/mm.  The project: NORM for FN on the same grid, then steady TANG
-with the local coefficient mu(|s|) at each element's slip speed (`solvers.contact.tang_falling`: CONTACT's
+with the local coefficient mu(|s|) at each element's slip speed (`solvers.contact.tang.falling`: CONTACT's
 slip-velocity iteration, User guide for CONTACT, 'The slip velocity iteration', around Kalker's active-set
 Newton method), `tang_steady(..., law, ...)`.
 

@@ -1,9 +1,9 @@
 """Friction curves at any value (issue 26): built per value on the contact, cached by value
-(pipeline.friction), selected by law and value (solvers.timeloop.inputs.contact_model)."""
+(pipeline.caches.friction_curves), selected by law and value (solvers.timeloop.inputs.contact_model)."""
 import numpy as np
 import pytest
 
-from pipeline.friction import CurveCache, Friction, curve_arrays, entries_of, with_curves
+from pipeline.caches.friction_curves import CurveCache, Friction, curve_arrays, entries_of, with_curves
 from solvers.contact.friction import rf_curve
 from solvers.contact.norm import approach_for_load
 from solvers.timeloop.inputs import contact_model, curve_label
@@ -105,7 +105,7 @@ def test_a_falling_law_curve_is_built_cached_and_selected_unflattened(static, tm
     """A case with CONTACT's exponential falling law (preset contact_tractcurv): its curve is the
     registry law's rf_curve (bit for bit), rises to a peak and falls, and contact_model hands the
     time loop the falling branch as built (nothing makes it monotone)."""
-    from pipeline.friction import resolve_friction
+    from pipeline.caches.friction_curves import resolve_friction
     from solvers.contact.friction_laws import preset
 
     f = resolve_friction({"preset": "contact_tractcurv"}, "x.toml")

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pipeline.atomic import save_text
+from pipeline.store.atomic import save_text
 
 pytestmark = pytest.mark.validation
 DOCS = Path(__file__).resolve().parents[2] / "docs" / "validation"
@@ -16,7 +16,7 @@ MUS = (0.30, 0.33, 0.35)
 
 
 def _curves(p3, dx, dy, v, E, nu):
-    from pipeline.friction import Friction, compute_curve
+    from pipeline.caches.friction_curves import Friction, compute_curve
 
     return {mu: compute_curve(p3, dx, dy, v, Friction.coulomb(mu), E, nu) for mu in MUS}
 
@@ -46,7 +46,7 @@ def test_curve_at_033_between_neighbours_and_kalker_slope():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from pipeline.contact_stage import contact_setup, static_contact
+    from pipeline.stages.contact import contact_setup, static_contact
     from solvers.contact.surfaces import patch_metrics
     from tests.contact.cases import DX, E, NU, V, hertz_case
     from tests.contact.kalker_table import creep_coefficient
@@ -102,7 +102,7 @@ def test_curve_at_033_between_neighbours_and_kalker_slope():
 
 The contact stage builds the regularized friction curve mu_RF(s) (SPEC 4.4, thesis [4.36-4.37]: steady
 TANG over the creepage, F2/F3) for the case's own friction, and a study for its grid, each once per
-contact and cached by value (`pipeline.friction`); before, only mu = 0.10 .. 0.60 in steps of 0.05 existed.
+contact and cached by value (`pipeline.caches.friction_curves`); before, only mu = 0.10 .. 0.60 in steps of 0.05 existed.
 A value off that grid, mu = 0.33, against its neighbours 0.30 and 0.35 and against Kalker's linear theory
 (`tests/contact/test_friction_values_validation.py`):
 

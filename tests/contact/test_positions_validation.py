@@ -2,12 +2,12 @@
 BV50 profiles: contact points (thesis [4.1] as a check), static NORM
 patches, regularized friction curves; profiles, patches and pressure maps
 plotted; written to docs/validation/31_contact_positions.md (make validate)."""
-from pipeline.artifacts import atomic_write
+from pipeline.store.artifacts import atomic_write
 from pathlib import Path
 
 import numpy as np
 import pytest
-from pipeline.atomic import save_text
+from pipeline.store.atomic import save_text
 
 pytestmark = pytest.mark.validation
 DOCS = Path(__file__).resolve().parents[2] / "docs" / "validation"
@@ -33,9 +33,9 @@ def test_three_positions_from_the_profiles():
 
     from geometry.calibration import THESIS_POSITIONS, jump_offsets
     from geometry.contact_point import FlangeContact, TrackRail, rigid_contact, wheel_shift
-    from pipeline.contact_stage import build_contact, contact_setup
+    from pipeline.stages.contact import build_contact, contact_setup
     from pipeline.study.map import map_mus
-    from pipeline.profiles import read_profile
+    from pipeline.config.case_profiles import read_profile
     from solvers.contact.surfaces import patch_metrics
 
     res = {}
@@ -145,8 +145,8 @@ def test_three_positions_from_the_profiles():
                     f"{a['rf_gamma_sat'][i03]:.4f} |")
     w = read_profile("c20_worn")[0]
     GAUGE = 1.435  # m, standard gauge (measured 14 mm below the crown, on the head's vertical side here)
-    from pipeline.rail_stage import load_rail_params
-    from pipeline.wheel_stage import load_wheel
+    from pipeline.stages.rail import load_rail_params
+    from pipeline.stages.wheel import load_wheel
 
     half_head = 0.5 * load_rail_params("bv50")[0]["head"]["width"]
     z_rc = load_wheel("c20")[0]["axle"]["rolling_circle_z"]
@@ -169,12 +169,12 @@ def test_three_positions_from_the_profiles():
     text = f"""## Contact at the three positions from the profiles (C20 on BV50, worn)
 
 Test: `tests/contact/test_positions_validation.py` (validation suite). The contact point of each SPEC 2
-position is the rigid contact of the case's profiles (`pipeline.profiles.case_contact`, the one function the
+position is the rigid contact of the case's profiles (`pipeline.config.case_profiles.case_contact`, the one function the
 contact, greens and radiate stages use; simulate, stability and listen take it from their artifacts): the
 calibrated worn C20 tread `geometry/profiles/c20_worn.csv` on the calibrated worn BV50 head
 `geometry/profiles/bv50_worn.csv`, the rail inclined 1:30, the wheel's rolling circle at c + dy_WR over the rail
 centre (y^W and y^R both + toward the field side, the flange at negative y^W). Around it the contact stage's
-own function (`pipeline.contact_stage.build_contact`) builds the gap from the profiles on the 0.5 mm grid
+own function (`pipeline.stages.contact.build_contact`) builds the gap from the profiles on the 0.5 mm grid
 (dx = v dt; the potential area from the gap itself), solves NORM for the 65 kN preload and computes the
 regularized friction curves with Kalker's TANG. Checked: the thesis' points in the project's convention
 (below), pressures >= 0, force = preload, every curve rises monotonically from 0 to mu, and that the patches
@@ -218,7 +218,7 @@ same sign as the table's -5.67 mm.
 
 ### Calibrated vs predicted
 
-Calibrated (fitted, `make calibrate`, `pipeline/calibrate_profiles.py` + `geometry/calibration.py`; targets: the
+Calibrated (fitted, `make calibrate`, `pipeline/validation/calibrate_profiles.py` + `geometry/calibration.py`; targets: the
 three wheel points y^W = -5, +4, +32 mm, nothing else): the 8 wear parameters -- `{w.meta['wear_parameters']}`;
 fitted points `{w.meta['fit_contact_points']}`; objective {w.meta['fit_objective']}. Derived from the table
 itself, not fitted: c = -17/3 mm. Inputs: the new C20 tread and BV50 head, the 1:30 rail inclination (Swedish

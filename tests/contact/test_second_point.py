@@ -1,4 +1,4 @@
-"""The second contact patch's geometry (issue 26, pipeline/second_point.py): the profiles turned
+"""The second contact patch's geometry (issue 26, pipeline/stages/second_point.py): the profiles turned
 into the zone's contact plane, against two circles touching at a 35 deg tangent (the gap along
 the common normal is known exactly), the rolling-direction curvature cos(delta) / r_b, and the
 one-line errors of `[contact] points = 2`."""
@@ -10,8 +10,8 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from pipeline.config import ConfigError
-from pipeline.second_point import second_zone, turned_geometry
+from pipeline.config.loader import ConfigError
+from pipeline.stages.second_point import second_zone, turned_geometry
 from solvers.contact.surfaces import contact_gap, curvatures
 
 DELTA = math.radians(35.0)
@@ -47,7 +47,7 @@ def test_turned_gap_of_two_circles():
 
 
 def test_points_two_errors():
-    from pipeline.profiles import case_contact
+    from pipeline.config.case_profiles import case_contact
 
     c, _, _, geo = case_contact("default")
     c = {**c, "contact": {**c["contact"], "points": 2}}

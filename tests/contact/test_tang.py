@@ -242,7 +242,7 @@ def test_spin_matches_contact_fastsim_case():
 def test_slip_median_is_numpys():
     # the preconditioner's median of D over the slip elements (tang_kernels._median, a quickselect):
     # numpy's median exactly, for odd and even counts, ties and sorted input
-    from solvers.contact.tang_kernels import _median
+    from solvers.contact.tang.kernels import _median
 
     rng = np.random.default_rng(7)
     for n in [*range(1, 30), 100, 101, 1000]:

@@ -1,4 +1,4 @@
-"""Steady TANG with a slip-speed dependent friction law (solvers.contact.tang_falling): the
+"""Steady TANG with a slip-speed dependent friction law (solvers.contact.tang.falling): the
 fixed point is Coulomb's law with the local coefficient mu(|s|) of the local slip speed;
 a float or the 'coulomb' law is today's solver bit for bit."""
 import numpy as np
@@ -101,7 +101,7 @@ def test_falling_curve_rises_to_a_peak_and_falls(contact):
 def test_friction_memory_relaxes_exponentially_along_x():
     # CONTACT's memory in steady rolling: from the leading edge (high x, mu = mu(0)) the coefficient
     # relaxes towards mu_s(|s|) by the factor theta = d_c / (d_c + dt max(|s|, s_0)) per element
-    from solvers.contact.tang_falling import coefficients
+    from solvers.contact.tang.falling import coefficients
 
     law = get_friction_law("exponential", fkin=0.1, fexp1=0.25, sabsh1=20.0, memdst=0.003, mem_s0=1.0)
     nx, ny, dt, s = 12, 3, 2e-5, 0.05

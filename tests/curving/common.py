@@ -23,7 +23,7 @@ def cone_pair(lam: float = 0.005, crown: float = 0.3):
 def metro(radius=None, **vehicle):
     """(Vehicle, Track, Profiles, CreepLaw) of the shipped r150 curve, the radius and vehicle
     fields replaced as given."""
-    from pipeline.curving import build_problem
+    from pipeline.curve.curving import build_problem
 
     c, v, veh, trk, prof, law, names = build_problem("r150")
     if radius is not None:

@@ -91,7 +91,7 @@ def test_stiff_bogie_flanges_at_the_geometric_angle_of_attack():
 @pytest.mark.parametrize("name", ["r150", "r300", "r100_cant", "y25_r300"])
 def test_shipped_curves_are_in_equilibrium(name):
     """(4) every shipped curve: residuals below 1e-8 of the wheel load; the four wheels reported."""
-    from pipeline.curving import solve_curve
+    from pipeline.curve.curving import solve_curve
 
     s = solve_curve(name)
     assert s.max_residual < RESIDUAL

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pipeline.atomic import save_text
+from pipeline.store.atomic import save_text
 from solvers.curving import solve
 from tests.analytic.curving import pure_rolling_shift
 from tests.curving.test_curving import RESIDUAL, _linear_case, independent_conicity
@@ -24,7 +24,7 @@ RADII = (50.0, 75.0, 100.0, 150.0, 200.0, 300.0, 500.0, 750.0, 1000.0)
 def _problem(curve, radius, a_unc=0.5):
     """The curve's problem at another radius, no cant, the speed that gives at most a_unc
     (m/s^2) of lateral acceleration (and at most the curve's speed)."""
-    from pipeline.curving import build_problem
+    from pipeline.curve.curving import build_problem
 
     c, v, veh, trk, prof, law, names = build_problem(curve)
     V = min(trk.speed, math.sqrt(a_unc * radius))
@@ -50,8 +50,8 @@ def test_curving_validation_writeup():
     import matplotlib.pyplot as plt
     from scipy.optimize import brentq
 
-    from pipeline.curving import solve_curve
-    from postprocess.curving_figures import bogie_in_curve, radius_sweep
+    from pipeline.curve.curving import solve_curve
+    from postprocess.plots.curving import bogie_in_curve, radius_sweep
     from solvers.curving.creep import kalker_coefficients
     from tests.contact.kalker_table import creep_coefficient
     from tests.curving.common import metro

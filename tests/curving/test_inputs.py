@@ -8,8 +8,9 @@ from pathlib import Path
 
 import pytest
 
-from pipeline import curving, paths
-from pipeline.config import ConfigError
+from pipeline.curve import curving
+from pipeline.store import paths
+from pipeline.config.loader import ConfigError
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -66,7 +67,7 @@ def test_command_line_error_is_one_line(dirs):
                                    '[friction]\nmu = 0.35\n')
     env = {"SQUEAL_CURVE_DIR": str(dirs / "curves"), "SQUEAL_VEHICLE_DIR": str(dirs / "vehicles"),
            "PATH": "/usr/bin:/bin", "OMP_NUM_THREADS": "1"}
-    r = subprocess.run([sys.executable, "-m", "pipeline.curving", "--curve", "bad"], cwd=ROOT, env=env,
+    r = subprocess.run([sys.executable, "-m", "pipeline.curve.curving", "--curve", "bad"], cwd=ROOT, env=env,
                        capture_output=True, text=True)
     assert r.returncode == 2
     assert r.stderr.count("\n") == 1 and "no such vehicle 'nope'" in r.stderr and "Traceback" not in r.stderr
@@ -81,9 +82,9 @@ def test_overrides_are_validated_and_change_the_curve():
 
 
 def test_case_fields_validate_as_a_case():
-    """A curve wheel's case-file keys plus name and time make a valid case (pipeline.schemas.CASE)."""
-    from pipeline.config import validate
-    from pipeline.schemas import CASE
+    """A curve wheel's case-file keys plus name and time make a valid case (pipeline.config.input_schemas.CASE)."""
+    from pipeline.config.loader import validate
+    from pipeline.config.input_schemas import CASE
 
     w = curving.solve_curve("r150").wheels[1]
     case = dict(w.case_fields(), name="r150/a1i", time={"dt": 36e-6, "duration": 1.0})

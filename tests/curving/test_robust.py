@@ -22,7 +22,7 @@ ROWS = [("C05 dry", 40.0, 102.0, 22.8, 0.4), ("C13 dry", 70.0, 102.0, 30.1, 0.4)
 
 
 def _problem(radius, cant, speed, mu):
-    from pipeline.curving import build_problem
+    from pipeline.curve.curving import build_problem
 
     c, v, veh, trk, prof, law, names = build_problem("r150", radius_m=radius, cant_mm=cant, speed_kmh=speed, mu=mu)
     return veh, trk, prof, law

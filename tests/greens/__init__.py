@@ -1,4 +1,4 @@
-"""Tests of solvers/receptance.py and solvers/green.py, and the references they
+"""Tests of solvers/wheel/receptance.py and solvers/greens/kernels.py, and the references they
 use (kept here, independent of the solvers):
 
 * ``sdof_receptance`` / ``sdof_impulse``: the single-degree-of-freedom
@@ -6,7 +6,7 @@ use (kept here, independent of the solvers):
 * ``beam_transfer``: closed-form transfer receptance of an Euler-Bernoulli beam
   on a viscously damped Winkler foundation (the rail as a beam), vertical and an
   uncoupled lateral beam, as the ``transfer(x, f) -> (nx, nf, 2, 2)`` callable of
-  ``solvers.green.moving_green``;
+  ``solvers.greens.kernels.moving_green``;
 * ``beam_impulse``: the same beam's impulse response g(x, t) in the time domain
   by a wavenumber integral over per-wavenumber oscillators (an independent check
   of the moving Green's function);
@@ -158,7 +158,7 @@ def _synthetic_c20():
 def wheel_case(y=-0.032):
     """Modal data of the C20 at the contact point y^W: dict with f_hz, n, m, cls,
     kind, modal_mass, zeta_suspension, zeta ([4.11]), phi (M, 2) and source."""
-    from solvers.receptance import contact_point, contact_shape, modal_damping
+    from solvers.wheel.receptance import contact_point, contact_shape, modal_damping
 
     if ARTIFACT.exists():
         d = np.load(ARTIFACT)

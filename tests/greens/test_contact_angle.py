@@ -1,4 +1,4 @@
-"""Contact angle (issue 26, solvers/contact_frame.py, pipeline/contact_plane.py): the projection of
+"""Contact angle (issue 26, solvers/contact/frame.py, pipeline/config/contact_plane.py): the projection of
 the receptances, kernels and modal shapes on the contact plane.
 
 * a rotation by 0 gives the old arrays exactly (the reference's `angle = "none"`);
@@ -15,10 +15,10 @@ import math
 import numpy as np
 import pytest
 
-from pipeline.contact_plane import RAIL_MATRICES, WHEEL_MATRICES, project_greens
-from solvers.contact_frame import normal_preload, project_receptance, project_shapes, rotation, to_structure
-from solvers.green import choose_grid, frequency_grid, green_from_receptance
-from solvers.receptance import wheel_receptance
+from pipeline.config.contact_plane import RAIL_MATRICES, WHEEL_MATRICES, project_greens
+from solvers.contact.frame import normal_preload, project_receptance, project_shapes, rotation, to_structure
+from solvers.greens.kernels import choose_grid, frequency_grid, green_from_receptance
+from solvers.wheel.receptance import wheel_receptance
 from tests.greens import DT, kernel_spectrum, pointwise_error, wheel_case
 
 ANGLE = math.radians(-21.0)      # a gauge-corner-like contact angle (tread contacts: a few degrees)

@@ -1,13 +1,13 @@
 """The fast forms of the rail's Green's function and its convolution against their references:
-``solvers.moving_kernel.moving_green_waves`` vs Kropp's construction per lag
-(``solvers.green.moving_green``), and the partitioned FFT convolution
-(``solvers.partitioned``) vs the direct sum (``solvers.green.convolve_direct``)."""
+``solvers.rail.moving_kernel.moving_green_waves`` vs Kropp's construction per lag
+(``solvers.greens.kernels.moving_green``), and the partitioned FFT convolution
+(``solvers.timeloop.partitioned``) vs the direct sum (``solvers.greens.kernels.convolve_direct``)."""
 import numpy as np
 import pytest
 
-from solvers.green import convolve_direct, moving_green, ring_convolver, ring_step
-from solvers.moving_kernel import mirror, moving_green_waves
-from solvers.partitioned import partitioned_convolver, partitioned_step
+from solvers.greens.kernels import convolve_direct, moving_green, ring_convolver, ring_step
+from solvers.rail.moving_kernel import mirror, moving_green_waves
+from solvers.timeloop.partitioned import partitioned_convolver, partitioned_step
 from tests.greens import DT, V
 from tests.interaction import RAIL
 

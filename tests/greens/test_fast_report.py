@@ -4,9 +4,9 @@ docs/validation/fast_rail_kernel.png.
     OMP_NUM_THREADS=1 .venv/bin/python -m tests.greens.test_fast_report     # ~2 min on one core
 
 * the moving Green's function of the BV50 at the default case's point: the wave-table form
-  (solvers/moving_kernel.py, what the greens stage stores) against the reference construction
-  (solvers/green.py ``moving_green``: Kropp per lag) from the same wave table, all 4096 lags;
-* the partitioned FFT convolution (solvers/partitioned.py) against the direct sum on a random
+  (solvers/rail/moving_kernel.py, what the greens stage stores) against the reference construction
+  (solvers/greens/kernels.py ``moving_green``: Kropp per lag) from the same wave table, all 4096 lags;
+* the partitioned FFT convolution (solvers/timeloop/partitioned.py) against the direct sum on a random
   force history with that kernel;
 * the default case, 8 s of rolling, with either rail convolution: L_F2, dominant frequency and
   force histories, against the dt-convergence error of the interaction (0.76 dB,
@@ -31,12 +31,12 @@ NEEDS = [BUILD / "rails" / "bv50" / "section.msh", BUILD / "cases" / "default" /
 
 
 def kernel_section() -> tuple[str, np.ndarray]:
-    from pipeline.greens_stage import RAIL_F_TAPER, RAIL_LAGS, RAIL_NT, rail_taper
-    from pipeline.rail_kernel import table_transfer, wave_table_threads
-    from pipeline.rail_stage import load_rail_params
-    from solvers.green import frequency_grid, moving_green
-    from solvers.moving_kernel import moving_green_waves
-    from pipeline.rail_model import build_rail_model
+    from pipeline.stages.greens import RAIL_F_TAPER, RAIL_LAGS, RAIL_NT, rail_taper
+    from pipeline.caches.rail_kernel import table_transfer, wave_table_threads
+    from pipeline.stages.rail import load_rail_params
+    from solvers.greens.kernels import frequency_grid, moving_green
+    from solvers.rail.moving_kernel import moving_green_waves
+    from pipeline.stages.rail_io import build_rail_model
 
     dt, v, y = 36e-6, 50 / 3.6, 0.012
     pr, _ = load_rail_params("bv50")
@@ -64,9 +64,9 @@ def kernel_section() -> tuple[str, np.ndarray]:
     text = f"""### Moving Green's function of the rail from its wave table
 
 BV50 at y^R = 12 mm (the default case), v = 50 km/h, dt = 36 us, Kropp's grid N_t = {RAIL_NT} ({nf} frequencies below
-the taper's end, {M} waves each), {RAIL_LAGS} lags. Reference: `solvers.green.moving_green` (Kropp's construction
+the taper's end, {M} waves each), {RAIL_LAGS} lags. Reference: `solvers.greens.kernels.moving_green` (Kropp's construction
 evaluated at every lag from the transfer receptance at x_k = v k dt: {nf * M * RAIL_LAGS:.1e} complex exponentials,
-{t_old:.0f} s here); fast form: `solvers.moving_kernel.moving_green_waves` (each wave's z^k as a recurrence, the
+{t_old:.0f} s here); fast form: `solvers.rail.moving_kernel.moving_green_waves` (each wave's z^k as a recurrence, the
 evanescent waves dropped once their remainder is below 1e-17 of the point receptance; {t_new:.1f} s), both from the
 same wave table.
 
@@ -83,8 +83,8 @@ same wave table.
 
 
 def convolution_section(g: np.ndarray) -> str:
-    from solvers.green import convolve_direct
-    from solvers.partitioned import partitioned_convolver
+    from solvers.greens.kernels import convolve_direct
+    from solvers.timeloop.partitioned import partitioned_convolver
 
     F = np.random.default_rng(5).standard_normal((40000, 2)) * [2e3, 6e3] + [0.0, 65e3]
     ref = convolve_direct(g, F)
@@ -97,7 +97,7 @@ def convolution_section(g: np.ndarray) -> str:
     return f"""### Partitioned FFT convolution against the direct sum
 
 The BV50 kernel above, a random force history of 40,000 steps (F2 ~ 2 kN, F3 ~ 65 kN +- 6 kN rms), all outputs;
-head B lags direct, the rest in partitions of B lags by overlap-save FFTs (`solvers.partitioned`).
+head B lags direct, the rest in partitions of B lags by overlap-save FFTs (`solvers.timeloop.partitioned`).
 
 | head B | partitions | max \\|xi_part - xi_direct\\| / max \\|xi_direct\\| |
 |---:|---:|---:|
@@ -106,7 +106,7 @@ head B lags direct, the rest in partitions of B lags by overlap-save FFTs (`solv
 
 
 def case_section() -> str:
-    from solvers.interaction import WheelModes, contact_model, simulate
+    from solvers.timeloop.interaction import WheelModes, contact_model, simulate
 
     with np.load(NEEDS[1]) as d:
         wheel = WheelModes(d["wheel_f"], d["wheel_mass"], d["wheel_zeta"], d["wheel_phi"])

@@ -4,10 +4,10 @@ import numba
 import numpy as np
 import pytest
 
-from solvers.green import (choose_grid, convolve_direct, convolve_fft, filter_step,
+from solvers.greens.kernels import (choose_grid, convolve_direct, convolve_fft, filter_step,
                            green_from_receptance, modal_filter, modal_impulse, modal_kernel, ring_convolver,
                            ring_step)
-from solvers.receptance import wheel_receptance
+from solvers.wheel.receptance import wheel_receptance
 from tests.greens import DT, wheel_case
 
 

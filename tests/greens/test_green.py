@@ -6,9 +6,9 @@ import pytest
 import scipy.fft as sfft
 from scipy.special import sici
 
-from solvers.green import (GreenDecayError, choose_grid, decayed, frequency_grid, green_from_receptance,
+from solvers.greens.kernels import (GreenDecayError, choose_grid, decayed, frequency_grid, green_from_receptance,
                            points_in_band)
-from solvers.receptance import wheel_receptance
+from solvers.wheel.receptance import wheel_receptance
 from tests.greens import (DT, band_rms, kernel_spectrum, participating_peaks, passivity, pointwise_error, sdof_impulse,
                           sdof_receptance, wheel_case)
 
@@ -130,7 +130,7 @@ def test_c20_band_limited_kernel_reproduces_the_receptance_pointwise(c20):
     """Issue 5: the DFT of the computed Green's function reproduces the receptance within
     1 % up to 2 kHz and 5 % up to 6.5 kHz at dt = 36 us, pointwise (every grid frequency
     from 5 Hz), for G22, G33, G23 of the C20 at the default contact point: the
-    band-limited correction of the first 16 samples (solvers/green.py) gives 0.1 %."""
+    band-limited correction of the first 16 samples (solvers/greens/kernels.py) gives 0.1 %."""
     w, n_t, f, G, g = c20
     gc, fit = green_from_receptance(G, DT, n_t, band_limit=6500.0, info=True)
     assert gc.dtype == np.float64 and gc.shape == g.shape

@@ -1,5 +1,5 @@
-"""The MIMO partitioned convolver (solvers/mimo_partitioned.py) against the direct sum
-(solvers.convolution.convolve_direct) block by block: blocks of different lengths, a kernel
+"""The MIMO partitioned convolver (solvers/timeloop/mimo_partitioned.py) against the direct sum
+(solvers.greens.convolution.convolve_direct) block by block: blocks of different lengths, a kernel
 shorter than one block, an input that is zero over stretches (its skipped terms are exact zeros:
 an output fed only by that input stays exactly 0 there)."""
 from __future__ import annotations
@@ -7,8 +7,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from solvers.convolution import convolve_direct
-from solvers.mimo_partitioned import mimo_convolver, mimo_step
+from solvers.greens.convolution import convolve_direct
+from solvers.timeloop.mimo_partitioned import mimo_convolver, mimo_step
 
 PAIRS = [(0, 1), (1, 0), (1, 1)]
 
@@ -56,8 +56,8 @@ def test_mimo_step_and_rejections():
 
 def test_gathered_block_is_the_partitioned_convolver_bit_for_bit():
     """gather=True: block 0's output, with the other block feeding that output getting zero
-    forces, is solvers.partitioned's (the one-point loop's convolver) bit for bit."""
-    from solvers.partitioned import partitioned_convolver
+    forces, is solvers.timeloop.partitioned's (the one-point loop's convolver) bit for bit."""
+    from solvers.timeloop.partitioned import partitioned_convolver
 
     rng = np.random.default_rng(5)
     g = rng.standard_normal((1000, 2, 2)) * np.exp(-np.arange(1000) / 300.0)[:, None, None]

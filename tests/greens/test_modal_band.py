@@ -1,4 +1,4 @@
-"""The wheel kernel the greens stage stores (solvers/modal_band.py): the closed-form spectrum of the
+"""The wheel kernel the greens stage stores (solvers/wheel/modal_band.py): the closed-form spectrum of the
 modal kernel against the FFT of the long sampled kernel (a second method), and the corrected
 kernel's spectrum against the receptance, pointwise at every grid point from 5 Hz to 6.5 kHz, for
 the C20 at the default contact point (issue 5's criterion: 1 % to 2 kHz, 5 % to 6.5 kHz; reached:
@@ -6,10 +6,10 @@ the C20 at the default contact point (issue 5's criterion: 1 % to 2 kHz, 5 % to 
 import numpy as np
 import scipy.fft as sfft
 
-from solvers.green import choose_grid, frequency_grid, green_from_receptance, modal_kernel
-from solvers.modal_band import corrected_modal_kernel, decay_db, spectrum
-from solvers.modal_filter import modal_kernel_dtft
-from solvers.receptance import wheel_receptance
+from solvers.greens.kernels import choose_grid, frequency_grid, green_from_receptance, modal_kernel
+from solvers.wheel.modal_band import corrected_modal_kernel, decay_db, spectrum
+from solvers.wheel.modal_filter import modal_kernel_dtft
+from solvers.wheel.receptance import wheel_receptance
 from tests.greens import DT, pointwise_error, wheel_case
 
 

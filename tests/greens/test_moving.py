@@ -3,8 +3,8 @@ foundation transfer receptance (tests/greens/__init__.py)."""
 import numpy as np
 import pytest
 
-from solvers.green import decayed, green_from_receptance, moving_green
-from solvers.green import frequency_grid
+from solvers.greens.kernels import decayed, green_from_receptance, moving_green
+from solvers.greens.kernels import frequency_grid
 from tests.greens import (DT, LATERAL, VERTICAL, V, beam_impulse, beam_moving_receptance, beam_receptance, beam_transfer,
                           kernel_spectrum, pointwise_error)
 

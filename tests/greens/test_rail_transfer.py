@@ -1,4 +1,4 @@
-"""Transfer receptances between two rail-head points (issue 26, solvers/rail_transfer.py), on
+"""Transfer receptances between two rail-head points (issue 26, solvers/rail/transfer.py), on
 the built BV50 model (head nodes |y| = 12 and 16 mm; skipped without build/rails/bv50):
 
 * a block from a point to itself is ``wave_table``'s point receptance (the tested routine);
@@ -22,8 +22,8 @@ F = np.array([80.0, 400.0, 1500.0, 4000.0])
 def model():
     if not MSH.exists():
         pytest.skip("needs build/rails/bv50/section.msh (make rail)")
-    from pipeline.rail_model import build_rail_model
-    from pipeline.rail_stage import load_rail_params
+    from pipeline.stages.rail_io import build_rail_model
+    from pipeline.stages.rail import load_rail_params
 
     pr, _ = load_rail_params("bv50")
     return build_rail_model(pr, str(MSH), contact_y=[0.012, 0.016], with_centre=False)
@@ -35,8 +35,8 @@ def G0(T, block=None):
 
 
 def test_point_blocks_are_the_point_receptances(model):
-    from solvers.rail_response import wave_table
-    from solvers.rail_transfer import block_wave_table
+    from solvers.rail.response import wave_table
+    from solvers.rail.transfer import block_wave_table
 
     for y in (0.012, -0.012, -0.016):
         P = wave_table(model, F, points=[y])
@@ -45,7 +45,7 @@ def test_point_blocks_are_the_point_receptances(model):
 
 
 def test_reciprocity_mirror_and_difference(model):
-    from solvers.rail_transfer import block_wave_table
+    from solvers.rail.transfer import block_wave_table
 
     S = np.diag([-1.0, 1.0])
     for ya, yb in ((0.012, 0.016), (-0.012, -0.016), (0.012, -0.016)):

@@ -1,8 +1,8 @@
-"""solvers/receptance.py: contact point, modal damping [4.11], receptances [4.10]."""
+"""solvers/wheel/receptance.py: contact point, modal damping [4.11], receptances [4.10]."""
 import numpy as np
 import pytest
 
-from solvers.receptance import (ContactPoint, contact_node, contact_point, contact_shape, modal_damping,
+from solvers.wheel.receptance import (ContactPoint, contact_node, contact_point, contact_shape, modal_damping,
                                 receptance_by_harmonic, shape_at, surface_edges, transfer_receptance,
                                 wheel_receptance)
 from tests.greens import ARTIFACT, Y_CONTACT, Z_RC, sdof_receptance, tread_radius_function, wheel_case

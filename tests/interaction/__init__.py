@@ -1,4 +1,4 @@
-"""Tests of solvers/interaction.py, and the in-memory cases they use (independent of
+"""Tests of solvers/timeloop/interaction.py, and the in-memory cases they use (independent of
 the pipeline's greens stage):
 
 * ``default_contact(mu)``: the contact of the default case (build/cases/default/contact.npz)
@@ -8,11 +8,11 @@ the pipeline's greens stage):
 * ``c20_modes(select)``: the C20's modal data at y^W = -32 mm (tests.greens.wheel_case: the
   built artifact, else the synthetic Table 4.1 set) with the damping rule [4.11];
 * ``beam_kernel(dt, v)``: the rail as the analytic beams on a damped foundation of
-  tests/greens (moving Green's function, solvers.green.moving_green);
+  tests/greens (moving Green's function, solvers.greens.kernels.moving_green);
 * ``bv50_kernel(dt, v)``: the rail's moving Green's function from the built BV50 rail
   (build/rails/bv50/rail.npz: transfer receptances G(x, f) on 200 distances x 1000 log-spaced
   frequencies 25 Hz - 6.5 kHz, interpolated bilinearly in x and f onto Kropp's grid; zero
-  above 6.5 kHz, held at the 25 Hz value below -- a test kernel: pipeline/greens_stage.py
+  above 6.5 kHz, held at the 25 Hz value below -- a test kernel: pipeline/stages/greens.py
   evaluates the exact wave sum up to 9 kHz and rolls it off smoothly above 6.5 kHz; the
   interaction report compares the two).
 """
@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from solvers.interaction import ContactModel, WheelModes, contact_model
+from solvers.timeloop.interaction import ContactModel, WheelModes, contact_model
 
 ROOT = Path(__file__).resolve().parents[2]
 CONTACT = ROOT / "build" / "cases" / "default" / "contact.npz"
@@ -73,7 +73,7 @@ def c20_modes(select=None, zeta_override: dict | None = None) -> tuple[WheelMode
 def beam_kernel(dt: float = DT, v: float = V, n_lags: int | None = None, n_t: int | None = None) -> np.ndarray:
     """Moving Green's function of the analytic beams (tests/greens) for the step dt: 36 ms of lags,
     N_t dt = 147 ms."""
-    from solvers.green import moving_green
+    from solvers.greens.kernels import moving_green
     from tests.greens import beam_transfer
 
     n_lags = n_lags or int(round(1000 * DT / dt))
@@ -111,7 +111,7 @@ def bv50_kernel(dt: float = DT, v: float = V, y_rail: float = 0.012, n_lags: int
                 n_t: int | None = None) -> np.ndarray:
     """Moving Green's function of the built BV50 rail: N_t dt = 0.295 s (df = 3.4 Hz, as the greens
     stage at 36 us) and 2048 lags (74 ms, 1 m of travel) at dt = 36 us, scaled with dt."""
-    from solvers.green import moving_green
+    from solvers.greens.kernels import moving_green
 
     n_lags = n_lags or int(round(2048 * DT / dt))
     n_t = n_t or int(round(8192 * DT / dt))

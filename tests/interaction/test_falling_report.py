@@ -38,12 +38,12 @@ def variants(contact_angle: float):
 
 
 def case_rows(case: str):
-    from pipeline import paths
-    from pipeline.radiate_stage import load_radiation_model, sound_power_of_forces
-    from pipeline.stability_stage import case_linear_model
+    from pipeline.store import paths
+    from pipeline.stages.radiate import load_radiation_model, sound_power_of_forces
+    from pipeline.stages.stability import case_linear_model
     from solvers.constants import SQUEAL_LEVEL_DB
-    from solvers.interaction import WheelModes, contact_model, simulate
-    from solvers.stability import linearise, screen
+    from solvers.timeloop.interaction import WheelModes, contact_model, simulate
+    from solvers.stability.screen import linearise, screen
     from solvers.study import nearest_mode
     from tests.stability.test_validation_report import falling_contact
 
@@ -126,7 +126,7 @@ What the literature reports, and what the model shows:
   (same occurrence as the reference at every position with either sign of a tread contact's spin).
 * **Traction and braking.** A longitudinal creepage turns the slip direction away from the lateral: across the
   slip the regularized law is a positive, viscous-like stiffness F3 mu_RF / |w|, along it the curve's slope, so
-  a part of the lateral motion is damped instead of driven (the screen's K matrix, `solvers/stability.py`). Here
+  a part of the lateral motion is damped instead of driven (the screen's K matrix, `solvers/stability/screen.py`). Here
   gamma_x = +-0.003 beside gamma_y = -0.014 silences the default case and dy05 and weakens dy10's (3,0,a) by
   9 dB; both signs act alike, because the loop has no longitudinal structural direction (the wheel's
   circumferential and torsional motion and the rail's longitudinal receptance are not modelled: F1 only loads
@@ -146,9 +146,9 @@ def test_kalker_loop_with_spin_and_a_falling_law():
     the falling law both squeal (the modes they select are reported)."""
     import time
 
-    from pipeline import paths
-    from pipeline.stability_stage import case_linear_model
-    from solvers.interaction import WheelModes, contact_model, simulate
+    from pipeline.store import paths
+    from pipeline.stages.stability import case_linear_model
+    from solvers.timeloop.interaction import WheelModes, contact_model, simulate
     from tests.stability.test_validation_report import falling_contact, falling_law
 
     case = "default"

@@ -1,4 +1,4 @@
-"""The time stepper (solvers/interaction.py): friction-curve ramp without structural dynamics,
+"""The time stepper (solvers/timeloop/interaction.py): friction-curve ramp without structural dynamics,
 decay of a stable case to the steady forces, a squealing reduced model and its convergence in
 dt, per-step NORM against the table, the Python reference loop against the numba loop, loss
 of contact, Kalker's transient TANG as the tangential model, the slip-velocity sign."""
@@ -8,7 +8,7 @@ import pytest
 
 from solvers.contact.friction import mu_rf
 from solvers.contact.norm import table_force
-from solvers.interaction import WheelModes, refine_table, simulate
+from solvers.timeloop.interaction import WheelModes, refine_table, simulate
 from tests.interaction import (DT, GAMMA_Y, PRELOAD, ROOT, V, default_contact, hertz_contact, reduced_squealer)
 
 
@@ -42,7 +42,7 @@ def test_ramp_reproduces_the_friction_curve(contact):
     assert np.abs(r.F[:, 2] - PRELOAD).max() < 1e-9 * PRELOAD and np.abs(r.F[:, 0]).max() == 0.0
     w = np.abs(gy) * V
     rigid = np.array([mu_rf(s, c.s_nodes, c.mu_nodes, c.slopes) for s in w])
-    from solvers.interaction import mu_and_slope
+    from solvers.timeloop.interaction import mu_and_slope
     from solvers.contact.compliance import table_compliance
     A2 = table_compliance(r.xi3_static, c.xi3_nodes, c.A2_nodes)
     dF2 = np.gradient(r.F[:, 1], DT)

@@ -1,4 +1,4 @@
-"""The per-step tangential point-contact solver (solvers/interaction.py: point_contact,
+"""The per-step tangential point-contact solver (solvers/timeloop/interaction.py: point_contact,
 mu_and_slope) against its defining equations [4.25]-[4.31]."""
 import math
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from solvers.contact.friction import monotone_slopes, mu_rf
-from solvers.interaction import EPS_SLIP, point_contact, mu_and_slope, steady_forces
+from solvers.timeloop.interaction import EPS_SLIP, point_contact, mu_and_slope, steady_forces
 from tests.interaction import DT, GAMMA_Y, PRELOAD, V, default_contact
 
 

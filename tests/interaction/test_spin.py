@@ -9,7 +9,7 @@ from solvers.contact.friction import mu_rf
 from solvers.contact.norm import NormTable, table_pressure
 from solvers.contact.spin import linear_creep_matrix, spin_lengths
 from solvers.contact.tang import tang_steady
-from solvers.interaction import simulate, static_approach
+from solvers.timeloop.interaction import simulate, static_approach
 from tests.analytic.hertz import curvature_ratio, hertz
 from tests.contact.cases import grid
 from tests.contact.kalker_table import creep_coefficient

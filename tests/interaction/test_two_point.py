@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from solvers.interaction import simulate
+from solvers.timeloop.interaction import simulate
 from solvers.timeloop.inputs import static_approach
 from solvers.timeloop.two_point_driver import SecondPoint, simulate_two, static_state
 from tests.interaction import DT, GAMMA_Y, PRELOAD, V, beam_kernel, c20_modes, hertz_contact

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from solvers.interaction import WheelModes, contact_model, simulate
+from solvers.timeloop.interaction import WheelModes, contact_model, simulate
 from solvers.timeloop.two_point_driver import SecondPoint, simulate_two
 from tests.interaction import DT, ROOT, V, beam_kernel, c20_modes
 
@@ -33,9 +33,9 @@ def load(case: str, name: str):
 
 
 def case_settings(case: str) -> dict:
-    from pipeline.config import load as load_toml
-    from pipeline.paths import case_file
-    from pipeline.schemas import CASE
+    from pipeline.config.loader import load as load_toml
+    from pipeline.store.paths import case_file
+    from pipeline.config.input_schemas import CASE
 
     return load_toml(case_file(case), CASE)
 
@@ -97,7 +97,7 @@ def test_two_points_and_contact_angle_report():
 
     # ---- contact angle: the C20 kernel check and the default case in the contact plane
     wc = __import__("tests.greens", fromlist=["wheel_case"]).wheel_case(-0.032)
-    from solvers.green import choose_grid, frequency_grid
+    from solvers.greens.kernels import choose_grid, frequency_grid
 
     n_t = choose_grid(wc["f_hz"], wc["zeta"], DT, decay_db=120)
     tca.test_projected_kernel_reproduces_the_receptance_along_the_tilted_directions(
@@ -140,8 +140,8 @@ def test_two_points_and_contact_angle_report():
         "Test: `tests/interaction/test_two_point_validation.py` (validation suite; it reruns the unit tests "
         "`tests/interaction/test_two_point.py`, `tests/stability/test_two_point_screen.py`, "
         "`tests/greens/test_contact_angle.py` for their numbers). Issue 26: `[contact] angle = \"none\" | "
-        "\"profiles\"` and `[contact] points = 1 | 2` (`solvers/contact_frame.py`, `solvers/timeloop/two_point.py`, "
-        "`solvers/stability_two.py`, `pipeline/second_point.py`, `pipeline/two_point_greens.py`).",
+        "\"profiles\"` and `[contact] points = 1 | 2` (`solvers/contact/frame.py`, `solvers/timeloop/two_point.py`, "
+        "`solvers/stability/two_point.py`, `pipeline/stages/second_point.py`, `pipeline/stages/greens_two_point.py`).",
         "",
         "**Reduction to one point.** The two-point loop with a second patch that is never reached (1 mm above the "
         "first, its own tables, shapes and rail blocks non-zero) against the one-point loop:",

@@ -1,4 +1,4 @@
-"""The sound (postprocess/audio.py): the growth envelope against a known
+"""The sound (postprocess/listening/audio.py): the growth envelope against a known
 exponential growth (also when the stored history aliases the tone), the
 onset, the shaped noise's spectrum, the PCM calibration read back through
 scipy.io.wavfile and the standard library's wave module."""
@@ -10,7 +10,7 @@ import pytest
 from scipy.io import wavfile
 from scipy.signal import welch
 
-from postprocess import audio as A
+from postprocess.listening import audio as A
 
 
 @pytest.mark.parametrize("f0", [1151.5, 1700.0])  # the second is above the history's Nyquist (1389 Hz): aliased

@@ -1,4 +1,4 @@
-"""Propagation and levels (postprocess/listener.py) against independent
+"""Propagation and levels (postprocess/listening/listener.py) against independent
 references: the IEC 61672-1 A-weighting table, the IEC 61260-1 band formulas,
 ISO 9613-1's absorption formula, and the exact field of point monopoles over a
 rigid plane (image sources summed here, with the source strength from its own
@@ -7,7 +7,7 @@ sphere)."""
 import numpy as np
 import pytest
 
-from postprocess import listener as L
+from postprocess.listening import listener as L
 
 # IEC 61672-1:2013 (Electroacoustics - Sound level meters - Part 1: Specifications), Table 3
 # "Frequency weightings and tolerance limits", column "A" (dB), at the nominal 1/3-octave

@@ -1,4 +1,4 @@
-"""The listen stage (pipeline/listen_stage.py) on the real C20 modes and a
+"""The listen stage (pipeline/stages/listen.py) on the real C20 modes and a
 synthetic simulation (exponential growth, then a limit cycle 2 Hz below the
 (3,0,a) mode) in a private build folder: the issue's "done when" checks on
 the WAV read back from disk, the bands, the report section, bad inputs named,
@@ -11,10 +11,10 @@ import sys
 import numpy as np
 import pytest
 
-from pipeline import artifacts, paths
-from pipeline import listen_stage as LS
-from pipeline import radiate_stage as RS
-from pipeline.config import ConfigError
+from pipeline.store import artifacts, paths
+from pipeline.stages import listen as LS
+from pipeline.stages import radiate as RS
+from pipeline.config.loader import ConfigError
 from tests.listen import wavcheck as WC
 from tests.radiation.test_stage import DT, REAL, _cached_load_npz, mode, no_plot
 
@@ -39,8 +39,8 @@ def histories(f0, a2=1500.0, sigma=10.0, t_sat=1.0, T=1.5):
 
 
 def write_simulate(t, F, tf, Ff, case="default"):
-    from pipeline.simulate_stage import simulate_config
-    from solvers.interaction import squeal_measures
+    from pipeline.stages.simulate import simulate_config
+    from solvers.timeloop.interaction import squeal_measures
 
     m = squeal_measures(Ff[:, 1], DT)
     artifacts.save_npz(paths.case_dir(case) / "simulate.npz", "simulate", simulate_config(case)[-1], t=t, F=F,
@@ -97,7 +97,7 @@ def test_wav_frequency_and_level_read_back(squeal):
     first = p[: int(0.1 * fs)]
     assert WC.level(first) < float(a["L_p"]) - 20
     comment = (d / "listen_7.5m.wav").read_bytes()
-    from postprocess.audio import wav_comment
+    from postprocess.listening.audio import wav_comment
 
     assert f"0 dBFS sine = {cal['full_scale_sine_dB_SPL']:.2f} dB SPL" in wav_comment(comment)
 
@@ -132,7 +132,7 @@ def test_artifact_keys_and_report_section(squeal, tmp_build):
                                           "passby": {"n_bogies": 2, "bogie_spacing": 12.5, "window": 30.0}}
     assert float(npz["r_direct"]) == pytest.approx(np.hypot(7.5 - 0.75, 1.2 - 0.39))
     assert (squeal["dir"] / "listen_7.5m.png").stat().st_size > 10_000
-    from pipeline.report import listen_section
+    from pipeline.stages.report import listen_section
 
     figdir = tmp_build / "figs"
     figdir.mkdir(exist_ok=True)
@@ -169,7 +169,7 @@ def test_receivers_are_kept_side_by_side(squeal, tmp_build):
     # the bands CSV reads back into the npz's band levels
     rows = np.genfromtxt(d / "listen_25m_bands.csv", delimiter=",", names=True)
     np.testing.assert_allclose(rows["L_p_dB"], far["band_L_p"], atol=1e-9)
-    from pipeline.report import listen_section
+    from pipeline.stages.report import listen_section
 
     figdir = tmp_build / "figs_side"
     figdir.mkdir(exist_ok=True)
@@ -260,7 +260,7 @@ def test_stale_listening_is_reported_not_shown(squeal, tmp_build, tmp_path, monk
     monkeypatch.setenv("SQUEAL_CASE_DIR", str(cases))
     with pytest.raises(artifacts.ArtifactError, match=r"listen\.npz: stale artifact.*make listen CASE=default"):
         LS.load_listening("default")
-    from pipeline.report import listen_section
+    from pipeline.stages.report import listen_section
 
     figdir = tmp_path / "figs"
     figdir.mkdir()

@@ -10,10 +10,10 @@ from pathlib import Path
 import numpy as np
 from scipy.io import wavfile
 
-from postprocess.spectra import amplitude_spectrum, dominant_frequency
+from solvers.spectra import amplitude_spectrum, dominant_frequency
 
 P0 = 20e-6
-FADE_S = 0.01  # the fade at the end of the file (postprocess.audio.FADE_S), left out of the read-back
+FADE_S = 0.01  # the fade at the end of the file (postprocess.listening.audio.FADE_S), left out of the read-back
 
 
 def read_calibrated(wav: Path, sidecar: Path):

@@ -15,7 +15,7 @@ CASES = {"dy05": -0.005, "dy10": -0.010, "default": -0.015}
 def sweep(case="default", offsets=()):
     """y^W of the case's rigid contact at other offsets (None for flange contact)."""
     from geometry.contact_point import contact_sweep
-    from pipeline.profiles import case_contact
+    from pipeline.config.case_profiles import case_contact
 
     _, _, _, geo = case_contact(case)
     c = geo.config["rolling_circle_y"]
@@ -24,7 +24,7 @@ def sweep(case="default", offsets=()):
 
 def test_c_is_the_thesis_table_value():
     """c from the printed table with its y^W negated: y^R - dy - y^W = -6, -6, -5 mm."""
-    from pipeline.schemas import CASE
+    from pipeline.config.input_schemas import CASE
 
     assert rolling_circle_offset() == pytest.approx(-17 / 3 * 1e-3, abs=1e-12)
     assert CASE["contact"]["rolling_circle_y"].default == pytest.approx(rolling_circle_offset(), abs=1e-7)
@@ -36,7 +36,7 @@ def test_contact_points_of_the_cases_reproduce_thesis_table(case):
     against thesis [4.1] in the project's convention: y^W within 1 mm of the
     printed value negated (the calibration's target); y^R, not fitted,
     within 1 mm of the printed value."""
-    from pipeline.profiles import case_contact
+    from pipeline.config.case_profiles import case_contact
 
     c, _, _, geo = case_contact(case)
     dy = c["contact"]["dy_wr"]
@@ -72,9 +72,9 @@ def test_worn_files_are_the_new_profiles_worn_as_their_headers_say():
     from geometry.profiles import build_profile
     from geometry.standard_profiles import rail_head_curve, wheel_tread_points
     from geometry.wear import RailWear, WheelWear, worn_rail, worn_wheel
-    from pipeline.profiles import read_profile
-    from pipeline.rail_stage import load_rail_params
-    from pipeline.wheel_stage import load_wheel
+    from pipeline.config.case_profiles import read_profile
+    from pipeline.stages.rail import load_rail_params
+    from pipeline.stages.wheel import load_wheel
 
     w, _ = read_profile("c20_worn")
     r, _ = read_profile("bv50_worn")

@@ -45,7 +45,7 @@ def test_straight_wheel_default_copy_contact_from_its_profiles_then_greens_asks_
     point is off the rail file's contact.y list: greens no longer stops for it (issue 25, the rail
     at any running-surface point); without the straight wheel's modes it asks for those, in one line."""
     from geometry.contact_point import TrackRail
-    from pipeline.profiles import read_profile
+    from pipeline.config.case_profiles import read_profile
 
     env = case_copy(tmp_path, "straight15")
     r = run("contact", "straight15", env, "-q")

@@ -43,7 +43,7 @@ def test_flange_contact_is_reported_not_crashed_into():
     centre): tread contact near the tape circle; moved 9.5 mm toward the
     flange, flange contact."""
     from geometry.standard_profiles import rail_head_points, s1002_points
-    from pipeline.rail_stage import load_rail_params
+    from pipeline.stages.rail import load_rail_params
 
     wheel = build_profile(*s1002_points(), "wheel", "s1002", "t", 0.0)
     rail = build_profile(*rail_head_points(load_rail_params("60e1")[0]), "rail", "60e1", "t", 0.0)

@@ -90,8 +90,8 @@ def test_header_errors():
 
 def test_pipeline_loader_reports_file_and_line(tmp_path, monkeypatch):
     """A bad file in geometry/profiles/ is a ConfigError (one line in the CLI)."""
-    import pipeline.profiles as P
-    from pipeline.config import ConfigError
+    import pipeline.config.case_profiles as P
+    from pipeline.config.loader import ConfigError
 
     y, z = crown()
     z_mm = 1e3 * z

@@ -19,7 +19,7 @@ def miniprof_text(y_mm, z_mm, coldef="X,Y"):
 
 @pytest.fixture
 def profiles_dir(tmp_path, monkeypatch):
-    import pipeline.profiles as P
+    import pipeline.config.case_profiles as P
 
     out = tmp_path / "profiles"
     out.mkdir()
@@ -45,7 +45,7 @@ def test_miniprof_whl_mirrored_and_z_down(profiles_dir, tmp_path, coldef):
 
 
 def test_plain_csv_and_wrong_orientation(profiles_dir, tmp_path):
-    from pipeline.config import ConfigError
+    from pipeline.config.loader import ConfigError
 
     P = profiles_dir
     y = np.arange(-62.0, 60.0, 0.5)

@@ -25,7 +25,7 @@ def test_rail_heads_from_their_arcs(rail):
     """Head curve: symmetric, radius R1 at the crown and R2 on the shoulder
     (curvature of the interpolated tabulation), tangent arcs (C1)."""
     from geometry.profiles import build_profile
-    from pipeline.rail_stage import load_rail_params
+    from pipeline.stages.rail import load_rail_params
 
     pr, _ = load_rail_params(rail)
     y, z = rail_head_points(pr)
@@ -49,7 +49,7 @@ def test_wear_moves_the_surface_along_its_normal():
     vertical gauge face (normal +y there) inward by its depth and leaves the
     field face alone; the running part stays single-valued."""
     from geometry.wear import RailWear, band, offset_inward, smoothstep, worn_rail
-    from pipeline.rail_stage import load_rail_params
+    from pipeline.stages.rail import load_rail_params
 
     assert band(0.0) == 1.0 and band(1.0) == 0.0 and smoothstep(0.5) == 0.5
     c = rail_head_curve(load_rail_params("bv50")[0])

@@ -1,2 +1,2 @@
-"""Tests of the Thompson-Jones radiation model (postprocess/radiation.py) and
-of the force spectra (postprocess/spectra.py)."""
+"""Tests of the Thompson-Jones radiation model (solvers/radiation/thompson_jones.py) and
+of the force spectra (solvers/spectra.py)."""

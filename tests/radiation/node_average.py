@@ -1,8 +1,8 @@
 """The sound power [4.38] by node averages, the form the thesis writes
 ([4.54]-[4.57]: each surface's mean-square velocity averaged over its nodes),
 kept in the tests as the second method the pipeline's Gram-matrix form
-(``postprocess.force_radiation.harmonic_power``) is checked against.  The modal
-sum and the damping rule are the pipeline's own (``solvers.receptance``)."""
+(``solvers.radiation.force_power.harmonic_power``) is checked against.  The modal
+sum and the damping rule are the pipeline's own (``solvers.wheel.receptance``)."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -10,9 +10,9 @@ from typing import Mapping
 
 import numpy as np
 
-from postprocess.radiation import C0, RHO_AIR, W_REF, sigma_axial, sigma_radial, sigma_torsion
-from postprocess.radiation_surfaces import SurfaceNodes, Surfaces, _boundary
-from solvers.receptance import modal_damping, modal_frf
+from solvers.radiation.thompson_jones import C0, RHO_AIR, W_REF, sigma_axial, sigma_radial, sigma_torsion
+from solvers.radiation.surfaces import SurfaceNodes, Surfaces, _boundary
+from solvers.wheel.receptance import modal_damping, modal_frf
 
 
 def contact_node(points, boundary: Mapping, y_w: float, z_rc: float,

@@ -1,6 +1,6 @@
-"""The body-of-revolution BEM (``solvers.bem_revolution``: first block row assembled by bempp-cl, one
+"""The body-of-revolution BEM (``solvers.radiation.bem_revolution``: first block row assembled by bempp-cl, one
 ring-sized problem per harmonic; the ground by the mirror symmetry of body and image) against the full
-3-D solve of ``solvers.bem`` on the same mesh (a second method: the same discrete problem), free field
+3-D solve of ``solvers.radiation.bem`` on the same mesh (a second method: the same discrete problem), free field
 (equal to 1e-8, harmonics 0 to 3) and over a rigid plane (to 1e-4: the 3-D pair's matrices are mirror-
 symmetric only to bempp's quadrature; measured 2e-5).  Slow: bempp compiles its numba
 kernels once per process (~1-2 min per operator on a loaded machine).
@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from postprocess.wheel_bem import revolve
+from solvers.radiation.bem_surface import revolve
 
 N_PHI = 14
 
@@ -36,8 +36,8 @@ def _devices() -> list[str]:
 @pytest.mark.parametrize("device", _devices())
 def test_revolution_solver_equals_the_full_solve(device):
     pytest.importorskip("bempp_cl")
-    from solvers import bem
-    from solvers.bem_revolution import first_block_row, ground_power, harmonic_parts, revolution_power
+    from solvers.radiation import bem
+    from solvers.radiation.bem_revolution import first_block_row, ground_power, harmonic_parts, revolution_power
 
     bem.use_device(device)
 
@@ -66,7 +66,7 @@ def test_revolution_solver_equals_the_full_solve(device):
 def test_block_circulant_algebra():
     """add_circulant builds A[(j, i), (k, l)] = row[i, (k - j) mod n_phi, l]; the ring matrix of harmonic
     m maps e^{i m phi} fields like the full matrix does; harmonic_parts splits cos n (phi - phi_c)."""
-    from solvers.bem_revolution import _ring_matrix, add_circulant, circulant_matvec, harmonic_parts
+    from solvers.radiation.bem_revolution import _ring_matrix, add_circulant, circulant_matvec, harmonic_parts
 
     nn, n_phi = 3, 7
     rng = np.random.default_rng(0)

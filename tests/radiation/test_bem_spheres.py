@@ -1,4 +1,4 @@
-"""The boundary-element solver of the radiation check (``solvers.bem``: bempp-cl, Burton-Miller, P1)
+"""The boundary-element solver of the radiation check (``solvers.radiation.bem``: bempp-cl, Burton-Miller, P1)
 against the analytic pulsating and oscillating spheres at ka = 0.1 ... 5 (issue 28: within 0.5 dB).
 Writes docs/validation/71_bem_spheres.md.  Slow: bempp compiles its numba kernels once per process
 (~1-2 min per operator on a loaded machine).
@@ -30,8 +30,8 @@ def test_bem_against_analytic_spheres():
     pytest.importorskip("bempp_cl")
     import bempp_cl.api as api
 
-    from pipeline.artifacts import atomic_write
-    from solvers import bem
+    from pipeline.store.artifacts import atomic_write
+    from solvers.radiation import bem
 
     g = api.shapes.regular_sphere(LEVEL)
     v = g.vertices.T
@@ -51,7 +51,7 @@ def test_bem_against_analytic_spheres():
                       f"{w:.0f} |" for dev, ka, lp, ep, lo, eo, w in rows)
     text = f"""## The boundary-element solver on the analytic spheres (issue 28)
 
-Test: `tests/radiation/test_bem_spheres.py` (validation suite). `solvers.bem.radiated_power` (bempp-cl
+Test: `tests/radiation/test_bem_spheres.py` (validation suite). `solvers.radiation.bem.radiated_power` (bempp-cl
 0.4.2; exterior Burton-Miller (1/2 I - K + (i/k) W) p = -(V + (i/k)(1/2 I + K')) q,
 q = i w rho v_n, P1 Galerkin, dense LU; W = 1/2 Re(v^H M p)) on bempp's regular sphere of level {LEVEL}
 ({len(v)} vertices, unit radius), unit normal velocity amplitude: pulsating (v_n = 1; exact

@@ -1,4 +1,4 @@
-"""The BEM check's record (``pipeline.bem_table``): a fragment's tables read back into rows (the seed of
+"""The BEM check's record (``pipeline.validation.bem_table``): a fragment's tables read back into rows (the seed of
 the CSV cache: the earlier form without solver/load/mode columns and the present form), rendered
 again to the same text, and merged with new rows (new ones replace, a free-field-only run keeps the
 ground of the same mesh)."""
@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import math
 
-from pipeline import bem_table as bt
+from pipeline.validation import bem_table as bt
 
 OLD = """intro
 

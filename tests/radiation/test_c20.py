@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 
 from geometry.wheel import surface_radii, wheel_segments
-from postprocess import radiation as R
+from solvers.radiation import thompson_jones as R
 from solvers.constants import thesis_contact_point
-from postprocess import radiation_surfaces as SF
+from solvers.radiation import surfaces as SF
 from tests.radiation import node_average as NA
-from solvers.receptance import modal_damping
+from solvers.wheel.receptance import modal_damping
 
 ART = Path(__file__).resolve().parents[2] / "build" / "wheels" / "c20" / "modes.npz"
 Y_DEFAULT = thesis_contact_point(-0.015)[0]  # the default case's y^W (m)

@@ -4,7 +4,7 @@ formulas under test), their high-frequency limits and low-frequency slopes."""
 import numpy as np
 import pytest
 
-from postprocess.radiation import (f_ca, f_ct, gamma_cancellation, kappa, radial_frequencies, sigma_axial,
+from solvers.radiation.thompson_jones import (f_ca, f_ct, gamma_cancellation, kappa, radial_frequencies, sigma_axial,
                                    sigma_radial, sigma_torsion)
 
 R = 0.39  # C20 nominal rolling radius (m)

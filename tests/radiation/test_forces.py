@@ -1,5 +1,5 @@
-"""Sound power of force histories (postprocess/force_radiation.py through
-pipeline.radiate_stage.sound_power_of_forces, the function the stage and the
+"""Sound power of force histories (solvers/radiation/force_power.py through
+pipeline.stages.radiate.sound_power_of_forces, the function the stage and the
 studies call).
 
 The key check: one mode driven at resonance by a sampled force history.  The
@@ -13,10 +13,10 @@ out by hand.  No FFT, window, modal factor or Gram matrix is involved.
 import numpy as np
 import pytest
 
-from pipeline.radiate_stage import sound_power_of_forces
-from postprocess import radiation_surfaces as SF
+from pipeline.stages.radiate import sound_power_of_forces
+from solvers.radiation import surfaces as SF
 from tests.radiation import node_average as NA
-from postprocess.force_radiation import build_model, decompose_forces, harmonic_power, power_of_forces
+from solvers.radiation.force_power import build_model, decompose_forces, harmonic_power, power_of_forces
 from tests.radiation.test_power import BND, PTS, SHAPE
 from tests.radiation.test_surfaces import RADII, flat_disc_segments
 
@@ -111,7 +111,7 @@ def test_single_mode_at_resonance(n, A2, A3, theta, f_r):
 def test_bins_alone_would_depend_on_the_bin_placement():
     # why tones are evaluated at their own frequency: the same tone at a zeta = 1e-4 mode, evaluated on
     # the power-scaled bins only, changes by many dB when f_r moves by half a bin; the tone path does not
-    from postprocess.spectra import amplitude_spectrum
+    from solvers.spectra import amplitude_spectrum
 
     t = np.arange(N) * DT
     df = 1 / (N * DT)

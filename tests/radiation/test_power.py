@@ -4,9 +4,9 @@ harmonic separation, the mean-square factors and the band integral."""
 import numpy as np
 import pytest
 
-from postprocess.radiation import C0, RHO_AIR, frequency_grid, sigma_axial, sigma_radial
-from postprocess.radiation_surfaces import radiation_surfaces, surface_nodes
-from solvers.receptance import modal_damping, modal_frf
+from solvers.radiation.thompson_jones import C0, RHO_AIR, frequency_grid, sigma_axial, sigma_radial
+from solvers.radiation.surfaces import radiation_surfaces, surface_nodes
+from solvers.wheel.receptance import modal_damping, modal_frf
 from tests.radiation.node_average import sound_power, unit_force_power
 from tests.radiation.test_surfaces import RADII, flat_disc_segments
 

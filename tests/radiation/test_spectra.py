@@ -1,9 +1,9 @@
-"""Force spectra and levels (postprocess/spectra.py): a sinusoid of known
+"""Force spectra and levels (solvers/spectra.py): a sinusoid of known
 amplitude and frequency is recovered; L_F2 of a sinusoid is 20 log10(A/sqrt 2)."""
 import numpy as np
 import pytest
 
-from postprocess.spectra import amplitude_spectrum, dominant_frequency, final_stretch, force_level, rms
+from solvers.spectra import amplitude_spectrum, dominant_frequency, final_stretch, force_level, rms
 
 DT = 36e-6  # SPEC 6 time step
 

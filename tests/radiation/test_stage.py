@@ -1,4 +1,4 @@
-"""The radiate stage (pipeline/radiate_stage.py) on the real C20 modes and a
+"""The radiate stage (pipeline/stages/radiate.py) on the real C20 modes and a
 synthetic simulation artifact in a private build folder: artifacts and keys,
 the sound peak at the driven mode, the flag of SPEC 6, staleness and
 atomicity.  Needs build/wheels/c20/modes.npz (tests/conftest.py builds it) and
@@ -9,8 +9,8 @@ import shutil
 import numpy as np
 import pytest
 
-from pipeline import artifacts, paths
-from pipeline import radiate_stage as RS
+from pipeline.store import artifacts, paths
+from pipeline.stages import radiate as RS
 from solvers.constants import F_MAX_HZ
 from tests.radiation import node_average as NA
 
@@ -40,7 +40,7 @@ def _cached_load_npz(path, kind, config=None, **kw):
     """artifacts.load_npz, reading the 58 MB rail artifact once (only its hash is needed here)."""
     if kind != "rail":
         return _load_npz(path, kind, config, **kw)
-    from pipeline.config import config_hash
+    from pipeline.config.loader import config_hash
 
     key = (str(path), config_hash(config) if config is not None else None)
     if key not in _RAIL_CACHE:
@@ -79,8 +79,8 @@ def squeal_forces(f0, a2=1500.0, a3=600.0):
 
 
 def write_simulate(t, F, case="default"):
-    from pipeline.simulate_stage import simulate_config
-    from solvers.interaction import squeal_measures
+    from pipeline.stages.simulate import simulate_config
+    from solvers.timeloop.interaction import squeal_measures
 
     m = squeal_measures(F[:, 1], DT)
     artifacts.save_npz(paths.case_dir(case) / "simulate.npz", "simulate", simulate_config(case)[-1], t_final=t,
@@ -100,7 +100,7 @@ def test_model_is_the_simulations_wheel(model):
     extra = np.stack([model.phi[:, 1], model.phi[:, 0], np.zeros(model.f_r.size)], axis=1)[:, None, :]
     md = dict(modes, shapes=np.concatenate([modes["shapes"], extra], axis=1))
     f = np.array([150.0, 437.0, 1000.0, 1153.0, 3100.0, 6200.0])
-    from postprocess.force_radiation import harmonic_power
+    from solvers.radiation.force_power import harmonic_power
 
     rng = np.random.default_rng(0)
     F2, F3 = rng.standard_normal(6) + 1j * rng.standard_normal(6), rng.standard_normal(6)

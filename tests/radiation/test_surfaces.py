@@ -4,7 +4,7 @@ assignment of boundary nodes to the surfaces."""
 import numpy as np
 import pytest
 
-from postprocess.radiation_surfaces import annulus_radii, radiation_surfaces, surface_nodes, web_thickness_profile
+from solvers.radiation.surfaces import annulus_radii, radiation_surfaces, surface_nodes, web_thickness_profile
 from tests.radiation.node_average import contact_node
 
 PI = 3.141592653589793

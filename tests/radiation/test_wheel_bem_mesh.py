@@ -1,4 +1,4 @@
-"""The wheel's BEM surface (``postprocess.wheel_bem``): the outline of a triangulated section, the
+"""The wheel's BEM surface (``solvers.radiation.bem_surface``): the outline of a triangulated section, the
 revolved mesh (closed, outward normals: its divergence-theorem volume is the exact volume of the
 revolved polygon) and the normal velocity of a harmonic (its angular dependence and magnitude)."""
 from __future__ import annotations
@@ -7,7 +7,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from postprocess.wheel_bem import coarsen, normal_velocity, outline, outward_normals, revolve
+from solvers.radiation.bem_surface import coarsen, normal_velocity, outline, outward_normals, revolve
 
 
 def _rectangle(r1=0.1, r2=0.4, z1=0.0, z2=0.05, nr=7, nz=3):

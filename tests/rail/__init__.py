@@ -16,7 +16,7 @@ atexit.register(shutil.rmtree, _TMP, ignore_errors=True)
 
 
 def rail_params(name: str = "bv50", mesh_scale: float = 1.0) -> dict:
-    from pipeline.rail_model import load_rail
+    from pipeline.stages.rail_io import load_rail
 
     p = load_rail(RAILS / f"{name}.toml")
     if mesh_scale != 1.0:
@@ -39,7 +39,7 @@ def mesh_path(name: str = "bv50", mesh_scale: float = 1.0) -> str:
 def assembled(name: str = "bv50", mesh_scale: float = 1.0):
     """(params, mesh, cell_tags, facet_tags, Assembled, materials, torsion props)."""
     from geometry.mesher import read_msh
-    from solvers import waveguide as wg
+    from solvers.rail import waveguide as wg
 
     p = rail_params(name, mesh_scale)
     mesh, ct, ft = read_msh(mesh_path(name, mesh_scale))
@@ -51,7 +51,7 @@ def assembled(name: str = "bv50", mesh_scale: float = 1.0):
 
 @functools.lru_cache(maxsize=None)
 def rail_model(name: str = "bv50", mesh_scale: float = 1.0):
-    from pipeline.rail_model import build_rail_model
+    from pipeline.stages.rail_io import build_rail_model
 
     return build_rail_model(rail_params(name, mesh_scale), mesh_path(name, mesh_scale))
 

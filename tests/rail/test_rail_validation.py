@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from pipeline.atomic import save_text
+from pipeline.store.atomic import save_text
 
 ROOT = Path(__file__).resolve().parents[2]
 DOCS = ROOT / "docs" / "validation"
@@ -43,8 +43,8 @@ def test_rail_validation_report():
     import matplotlib.tri as mtri
 
     from geometry.rail import head_profile, section_properties
-    from solvers import rail_response as rr
-    from solvers import waveguide as wg
+    from solvers.rail import response as rr
+    from solvers.rail import waveguide as wg
     from tests.analytic import beam
     from tests.rail import assembled, beam_params, rail_model, rail_params
     from tests.rail.test_response import _direct
@@ -53,8 +53,8 @@ def test_rail_validation_report():
     md = ["## Rail (BV50 waveguide FE)", ""]
     md.append(
         "Produced by `tests/rail/test_rail_validation.py` (`make validate`). Model: "
-        "`geometry/rail.py` (section from `geometry/rails/bv50.toml`), `solvers/waveguide.py` (SAFE/WFE "
-        "matrices, SLEPc dispersion, wave types), `solvers/rail_response.py` (receptances by the wave "
+        "`geometry/rail.py` (section from `geometry/rails/bv50.toml`), `solvers/rail/waveguide.py` (SAFE/WFE "
+        "matrices, SLEPc dispersion, wave types), `solvers/rail/response.py` (receptances by the wave "
         "expansion); references in `tests/analytic/beam.py`. The source thesis (Zenzerovic 2014, section "
         "4.2.2, Figs. 4.5-4.6) uses a BV50 rail, continuously supported with the rail pad, modelled with "
         "waveguide FE (WANDS, after Pieringer 2011); this is an independent implementation of that model "
@@ -204,7 +204,7 @@ def test_rail_validation_report():
     f0 = np.sqrt(p["pad"]["stiffness"] / m_) / 2 / np.pi
     md += ["### Dispersion", "",
            "Real symmetric GHEP (K0 + k K1 + k^2 K2) phi = w^2 M phi per real k (SLEPc shift-invert, "
-           "MUMPS), axial displacement scaled U_x = -i W (see `solvers/waveguide.py`), half section with "
+           "MUMPS), axial displacement scaled U_x = -i W (see `solvers/rail/waveguide.py`), half section with "
            "the symmetric (U_y = 0 on y = 0) and antisymmetric (W = U_z = 0) families solved separately. "
            "Wave types are identified from the mode shapes (kinetic energy in W, share of rigid-section "
            "motion, where the deforming part moves) and branches joined by mode-shape correlation.", "",

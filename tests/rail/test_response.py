@@ -1,4 +1,4 @@
-"""Forced response of the supported BV50 rail (solvers/rail_response.py).
+"""Forced response of the supported BV50 rail (solvers/rail/response.py).
 
 1. The reduced wave sum against the direct wavenumber integral of the
    UNREDUCED waveguide model (sparse solves on Gauss-Legendre panels along
@@ -23,7 +23,7 @@ import numpy as np
 import pytest
 from scipy.sparse.linalg import splu
 
-from solvers import rail_response as rr
+from solvers.rail import response as rr
 from tests.analytic import beam
 from tests.rail import beam_params, rail_model
 
@@ -189,7 +189,7 @@ def test_decay_rates_plausible():
 
 
 def test_stage_arrays_consistent():
-    from pipeline.rail_model import stage_arrays
+    from pipeline.stages.rail_io import stage_arrays
 
     model = rail_model("bv50")
     f = np.array([60.0, 700.0, 3000.0])

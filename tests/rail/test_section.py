@@ -107,7 +107,7 @@ def test_warping_solver_on_rectangles():
     from dolfinx import mesh as dmesh
     from mpi4py import MPI
 
-    from solvers.waveguide import torsion_properties
+    from solvers.rail.waveguide import torsion_properties
 
     for a, b in ((0.04, 0.04), (0.08, 0.02), (0.02, 0.08)):
         m = dmesh.create_rectangle(MPI.COMM_SELF, [[0.0, 0.0], [a / 2, b]], [12, 24], dmesh.CellType.triangle)
@@ -126,7 +126,7 @@ def test_pad_layer_calibration_exact_for_nu_zero():
     which the calibration must reproduce (rocked: ~E b^3 / (12 t)).
     Sheared laterally it is not in simple shear (its free sides carry no
     shear traction), so the lateral stiffness lies a little below G b / t."""
-    from solvers.waveguide import pad_calibration
+    from solvers.rail.waveguide import pad_calibration
 
     p, mesh, ct, ft, asm, mat, tors = assembled("bv50")
     c = pad_calibration(asm, 0.0)

@@ -1,9 +1,9 @@
-"""The rail's receptances at any point of the running surface (solvers/rail_surface.py,
-pipeline/rail_surface.py; issue 25).
+"""The rail's receptances at any point of the running surface (solvers/rail/surface.py,
+pipeline/caches/rail_surface_table.py; issue 25).
 
 1. The quadratic edge weights reproduce any quadratic in y exactly and are 1 at a node.
 2. At a loaded node, the stored wave shapes give the wave table's amplitudes
-   (solvers.rail_response.wave_table) to rounding: the same formula, -i phi phi / D.
+   (solvers.rail.response.wave_table) to rounding: the same formula, -i phi phi / D.
 3. At a node that is not loaded (12 mm in the surface model, whose loads are ~7.5 mm apart),
    the point receptance against the direct model loaded there: within 0.5 % of its largest
    entry (measured 1.6e-3 .. 3.5e-3 below 250 Hz, 2e-5 .. 1.4e-3 from 250 Hz to 6.4 kHz; the
@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from solvers import rail_surface as RS
+from solvers.rail import surface as RS
 from tests.rail import mesh_path, rail_params
 
 F_CHECK = np.array([5.0, 60.0, 250.0, 435.0, 900.0, 1500.0, 2500.0, 4000.0, 5500.0, 6400.0])
@@ -59,8 +59,8 @@ def _surface(model, rail, f):
 
 
 def _direct(rail, y, f):
-    from pipeline.rail_model import build_rail_model
-    from solvers.rail_response import wave_table
+    from pipeline.stages.rail_io import build_rail_model
+    from solvers.rail.response import wave_table
 
     model = build_rail_model(rail, mesh_path("bv50"), contact_y=[y], with_centre=False)
     return model, wave_table(model, f, points=[y])
@@ -79,7 +79,7 @@ def test_loaded_node_is_the_wave_table():
 
 def test_unloaded_node_against_the_direct_model():
     from geometry.rail import running_surface
-    from pipeline.rail_model import build_rail_model
+    from pipeline.stages.rail_io import build_rail_model
 
     rail = rail_params("bv50")
     _, T = _direct(rail, 0.012, F_CHECK)

@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from solvers import waveguide as wg
+from solvers.rail import waveguide as wg
 from tests.analytic.beam import timoshenko_dispersion
 from tests.rail import assembled, rail_model
 
@@ -83,7 +83,7 @@ def test_free_rail_timoshenko(k):
 
 
 def test_reduced_model_reproduces_full_dispersion():
-    """The reduced block basis (solvers.rail_response) gives the waves of the
+    """The reduced block basis (solvers.rail.response) gives the waves of the
     full model at wavenumbers that are not among its snapshots."""
     import scipy.linalg as sl
 

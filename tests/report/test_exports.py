@@ -10,8 +10,8 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pytest
 
-from pipeline import paths
-from pipeline.exports import CASE_FLOWS, radiation_tables
+from pipeline.store import paths
+from pipeline.stages.listen_exports import CASE_FLOWS, radiation_tables
 
 # NoiseModelling (Universite-Gustave-Eiffel/NoiseModelling, EmissionTableGenerator.makeTrainLWTable with
 # the prefix "HZ" of Railway_Emission_from_Traffic.groovy; the bands of ProfileBuilder
@@ -91,7 +91,7 @@ def test_bands_are_the_listen_stages():
     installed) equal the listen stage's (pyfar's IEC 61260-1 bands)."""
     pytest.importorskip("pyfar")
     from postprocess.exports import third_octaves
-    from postprocess.listener import third_octave_bands
+    from postprocess.listening.listener import third_octave_bands
 
     for lo, hi in ((10.0, 20000.0), (50.0, 10000.0), (44.0, 11000.0)):
         a, b = third_octaves(lo, hi), third_octave_bands(lo, hi)
@@ -104,7 +104,7 @@ def test_radiate_exports_do_not_import_the_listening_packages():
     import subprocess
     import sys
 
-    code = ("import sys; import pipeline.exports as E, postprocess.exports as P, numpy as np; "
+    code = ("import sys; import pipeline.stages.listen_exports as E, postprocess.exports as P, numpy as np; "
             "P.band_power(np.array([434.7]), np.array([0.05])); assert 'pyfar' not in sys.modules")
     r = subprocess.run([sys.executable, "-c", code], cwd=paths.ROOT, capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
@@ -146,8 +146,8 @@ def test_default_case_export_matches_its_bands():
 def test_vtk_modes_and_ods_read_back(tmp_path):
     import pyvista as pv
 
-    from pipeline.exports import write_vtk
-    from pipeline.radiate_stage import load_radiation_model
+    from pipeline.stages.listen_exports import write_vtk
+    from pipeline.stages.radiate import load_radiation_model
 
     model = load_radiation_model("default")
     a = synthetic_radiation()

@@ -11,8 +11,8 @@ import wave
 import numpy as np
 import pytest
 
-from pipeline import paths
-from pipeline.report_html import render, write_html
+from pipeline.store import paths
+from pipeline.stages.report_html import render, write_html
 from tests.report.cdp import find_chromium, inspect_page
 
 pytestmark = pytest.mark.skipif(find_chromium() is None, reason="chromium is not installed (debian-packages.txt; "

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from pipeline.report_headline import headline_markdown, verdict
+from pipeline.stages.report_headline import headline_markdown, verdict
 from postprocess.plots.contact import friction_curves_figure, mark_operating_slip, operating_point
 from postprocess.plots.stability import screen_figure
 
@@ -63,14 +63,14 @@ def test_friction_curves_mark_the_operating_slip():
 
 
 def test_greens_section_writes_kernel_lengths_as_samples(monkeypatch, tmp_path):
-    import pipeline.report as R
+    import pipeline.stages.report as R
 
     a = {"wheel_f": np.ones(37), "wheel_nt": np.int64(2834352), "dt": np.float64(36e-6),
          "wheel_decay_db": np.float64(-126.0), "rail_kernel": np.zeros((4096, 2, 2)),
          "rail_tail_ratio": np.float64(1.3e-4)}
     monkeypatch.setattr(R.artifacts, "load_npz", lambda *x, **k: (a, {}))
     monkeypatch.setattr(R.shutil, "copy2", lambda *x: None)
-    import pipeline.greens_stage as G
+    import pipeline.stages.greens as G
 
     monkeypatch.setattr(G, "greens_inputs", lambda case: ({},))
     text = R.greens_section("default", tmp_path)

@@ -1,4 +1,4 @@
-"""The pass-by (postprocess/passby.py): a single steady tone passing at constant speed against the
+"""The pass-by (postprocess/listening/passby.py): a single steady tone passing at constant speed against the
 closed-form time integrals of 1/r^2 (monopole) and 3 y^2 / r^4 (dipole along the axle), the Doppler
 shift, and L_AFmax against IEC 61672-1's F time weighting on tone bursts (the standard's reference
 responses 10 lg(1 - e^{-T_b / tau}), its Table 4)."""
@@ -7,8 +7,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from postprocess.listener import P_REF, Geometry
-from postprocess.passby import (Train, components, emission_time, exposure_dipole, exposure_monopole, f_weighted,
+from postprocess.listening.listener import P_REF, Geometry
+from postprocess.listening.passby import (Train, components, emission_time, exposure_dipole, exposure_monopole, f_weighted,
                                 levels, passby_signal)
 
 FS = 44100.0
@@ -31,7 +31,7 @@ def test_single_tone_exposure_matches_the_closed_form(directivity, speed_kmh):
     assert L["L_Aeq"] == pytest.approx(10 * np.log10(ref / L["T"] / P_REF**2), abs=0.05)   # unweighted here
     # A-weighted: the tone's A(f0) (IEC 61672-1 Table 3 at 400/500 Hz: -4.8/-3.2 dB; at 434.7 Hz -4.2 dB)
     # plus the analytic level, the Doppler shift of +-M f0 moving A by < 0.1 dB
-    from postprocess.listener import a_weighting
+    from postprocess.listening.listener import a_weighting
 
     _, pA = passby_signal([f0], [W], train, geo, FS, weighted=True)
     A0 = float(a_weighting(f0)[0])

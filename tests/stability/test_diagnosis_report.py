@@ -51,8 +51,8 @@ def _row(res, keys):
 
 def _lf_structure(lm):
     """|xi| of rail and wheel (directions 2, 3) per unit dF3 at the fastest LF root (full slip)."""
-    from solvers.green import modal_filter
-    from solvers.stability import _wheel_z, rail_receptance_z, track_roots
+    from solvers.greens.kernels import modal_filter
+    from solvers.stability.screen import _wheel_z, rail_receptance_z, track_roots
 
     lf = [r for r in track_roots(lm) if r.sigma > 0]
     if not lf:
@@ -66,7 +66,7 @@ def _lf_structure(lm):
 
 @pytest.mark.validation
 def test_diagnosis_report():
-    from pipeline.stability_stage import case_linear_model
+    from pipeline.stages.stability import case_linear_model
 
     for case in CASES:
         _need(case)
@@ -100,7 +100,7 @@ def test_diagnosis_report():
     text = f"""## Fidelity diagnosis: which mode grows at each contact position (issue 13)
 
 Test: `tests/stability/test_diagnosis_report.py` (validation suite). The stability screen
-(`solvers/stability.py`, `make stability`) linearises the time loop about steady rolling; its growth rates
+(`solvers/stability/screen.py`, `make stability`) linearises the time loop about steady rolling; its growth rates
 match those measured in the time loop's growth phase (reduced squealer: 8.38 / 8.36 1/s for (2,0,a),
 14.74 / 14.74 1/s for (3,0,a), `tests/stability/test_screen.py`; default case: (2,0,a) +7.90, (3,0,a)
 +9.19, (4,0,a) +2.21 1/s against +7.89, +9.23, +2.22 measured by the interaction validation). Growth

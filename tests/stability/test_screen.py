@@ -1,4 +1,4 @@
-"""solvers/stability.py: the linearised time loop.  Checked against (1) the direct z-transform
+"""solvers/stability/screen.py: the linearised time loop.  Checked against (1) the direct z-transform
 sums of the kernels it replaces by closed forms, (2) the one-mode, full-slip closed form of the
 interaction validation (kappa_r = Phi3 (Phi3 + mu Phi2)), and (3) growth rates MEASURED in the
 time loop (numba driver, complex demodulation of F2), a second method that shares only the
@@ -6,9 +6,9 @@ inputs."""
 import numpy as np
 import pytest
 
-from solvers.green import modal_kernel
-from solvers.interaction import WheelModes, simulate
-from solvers.stability import (Basis, LinearModel, linearise, rail_receptance_z, screen, track_roots, wheel_receptance_z,
+from solvers.greens.kernels import modal_kernel
+from solvers.timeloop.interaction import WheelModes, simulate
+from solvers.stability.screen import (Basis, LinearModel, linearise, rail_receptance_z, screen, track_roots, wheel_receptance_z,
                                wheel_roots)
 from tests.interaction import DT, GAMMA_Y, PRELOAD, V, decay_rates, hertz_contact, reduced_squealer
 

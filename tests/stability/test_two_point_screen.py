@@ -1,7 +1,7 @@
-"""The two-point stability screen (issue 26, solvers/stability_two.py):
+"""The two-point stability screen (issue 26, solvers/stability/two_point.py):
 
 * with the second point unloaded, its wheel roots are the one-point screen's
-  (``solvers.stability.wheel_roots``, exact polish) to 1e-7 relative;
+  (``solvers.stability.screen.wheel_roots``, exact polish) to 1e-7 relative;
 * two identical coincident patches are one patch of twice the normal stiffness (as in the time
   loop's test): the roots agree with the one-point screen of the doubled contact;
   (every two-point root is a root of the one-point characteristic).
@@ -11,9 +11,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from solvers.modal_filter import modal_filter
-from solvers.stability import characteristic, linearise, wheel_roots
-from solvers.stability_two import linearise_two, wheel_roots as wheel_roots_two
+from solvers.wheel.modal_filter import modal_filter
+from solvers.stability.screen import characteristic, linearise, wheel_roots
+from solvers.stability.two_point import linearise_two, wheel_roots as wheel_roots_two
 from solvers.timeloop.two_point_driver import SecondPoint
 from tests.interaction import DT, GAMMA_Y, PRELOAD, V, beam_kernel, c20_modes, hertz_contact
 from tests.interaction.test_two_point import doubled

@@ -40,9 +40,9 @@ def measured_growth(x: np.ndarray, dt: float, f: float, t0: float = 0.02, window
 
 
 def _run(case):
-    from pipeline import paths
-    from pipeline.stability_stage import case_linear_model
-    from solvers.interaction import WheelModes, contact_model, simulate
+    from pipeline.store import paths
+    from pipeline.stages.stability import case_linear_model
+    from solvers.timeloop.interaction import WheelModes, contact_model, simulate
     from solvers.stability import screen
     from solvers.study import nearest_mode
 
@@ -93,7 +93,7 @@ def test_screen_against_the_time_loop():
         quick += "\nFull map (`make study STUDY=map`, then `make stability-map STUDY=map`):\n\n" + full.read_text()
     text = """## Stability screen against the time loop (issue 16)
 
-Test: `tests/stability/test_validation_report.py` (validation suite). The screen (`solvers/stability.py`,
+Test: `tests/stability/test_validation_report.py` (validation suite). The screen (`solvers/stability/screen.py`,
 `make stability CASE=..`) against growth rates measured in the time loop's linear growth phase (1e-9 N s
 kick, F2 demodulated at each pole's frequency in 50 ms Blackman-Harris windows until F2 departs from
 steady rolling by 1e-4) and against the mode each case finally squeals at. Poles growing slower than
@@ -182,7 +182,7 @@ def falling_contact(cm, law_params, v: float, preload: float):
     peer's rf_curve and the law's tail), as the contact stage builds a law's curve."""
     from solvers.contact.falling import tang_curve
     from solvers.contact.norm import NormTable, table_pressure
-    from solvers.interaction import static_approach
+    from solvers.timeloop.interaction import static_approach
 
     table = NormTable(cm.xi3_nodes, cm.F3_nodes, cm.q_nodes, cm.pressure_nodes, cm.pressure_nodes > 0)
     p3 = table_pressure(table, static_approach(cm, preload))
@@ -195,10 +195,10 @@ def _run_falling(case):
     (matrix pencil, and the windowed demodulation of the Coulomb table beside it) measured from
     steady rolling with a kick of 1e-9 N s (mild) or 1e-13 N s (moderate: the faster growth leaves
     less time before 1e-4, the slow poles must stay above the rounding of F2, ~1e-11 N)."""
-    from pipeline import paths
-    from pipeline.stability_stage import case_linear_model
-    from solvers.interaction import WheelModes, contact_model, simulate
-    from solvers.stability import linearise, screen
+    from pipeline.store import paths
+    from pipeline.stages.stability import case_linear_model
+    from solvers.timeloop.interaction import WheelModes, contact_model, simulate
+    from solvers.stability.screen import linearise, screen
     from tests.stability.growth import linear_phase, pencil_growth
 
     c, lm, labels, _ = case_linear_model(case)

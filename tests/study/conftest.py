@@ -21,8 +21,8 @@ def _stage(*args: str) -> None:
 def ensure_case(case: str = "default") -> None:
     if _ok(f"from pipeline.study.context import load_context; load_context({case!r}, radiation=False)"):
         return
-    if not _ok("from pipeline.artifacts import load_npz; from pipeline.rail_stage import load_rail_params; "
-               "from pipeline.paths import rail_dir; "
+    if not _ok("from pipeline.store.artifacts import load_npz; from pipeline.stages.rail import load_rail_params; "
+               "from pipeline.store.paths import rail_dir; "
                "load_npz(rail_dir('bv50') / 'rail.npz', 'rail', load_rail_params('bv50')[0])"):
         _stage("rail", "--rail", "bv50")
     _stage("contact", "--case", case)

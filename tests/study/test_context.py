@@ -1,6 +1,6 @@
 """pipeline/study_context.py: the code hash behind a study row's inputs ignores documentation
 (docstrings, comments) and follows the code."""
-from pipeline.code_hash import code_text as _code_text
+from pipeline.store.code_hash import code_text as _code_text
 
 
 def test_code_text_ignores_documentation_only(tmp_path):
@@ -16,11 +16,11 @@ def test_code_text_ignores_documentation_only(tmp_path):
 
 def test_context_builds_a_study_grid_curves_once(default_case):
     """A study's friction values off the old 0.05 grid get their curves on the case's contact
-    (pipeline.friction, cached by value): the case's own curve is the contact stage's, bit for bit,
+    (pipeline.caches.friction_curves, cached by value): the case's own curve is the contact stage's, bit for bit,
     a new value's ends on its plateau, and loading again reads the cache (no new file)."""
     import numpy as np
 
-    from pipeline import artifacts, paths
+    from pipeline.store import artifacts, paths
     from pipeline.study.context import load_context
     from solvers.timeloop.inputs import contact_model
 

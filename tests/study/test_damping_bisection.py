@@ -7,7 +7,7 @@ estimate, where the single-mode growth rate (tests.interaction.single_mode_growt
 domain, independent of the time loop) crosses zero."""
 import numpy as np
 
-from solvers.interaction import WheelModes, simulate
+from solvers.timeloop.interaction import WheelModes, simulate
 from solvers.study import Outcome, damping_procedure
 from tests.greens import beam_transfer
 from tests.interaction import DT, V, beam_kernel, contact_stiffness, hertz_contact, single_mode_growth

@@ -1,11 +1,11 @@
-"""The limit-cycle measures of issue 28 (``postprocess.limit_cycle``) on inputs with known answers:
+"""The limit-cycle measures of issue 28 (``postprocess.limit_cycle_measures``) on inputs with known answers:
 the knee of a curve given in closed form, a mode's response off resonance, the sound power's
 face velocity, and which bound synthetic slip/force records sit on."""
 from __future__ import annotations
 
 import numpy as np
 
-from postprocess.limit_cycle import (RHO_C, bound_of, curve, cycle_measures, face_velocity_for_level, knee_slip,
+from postprocess.limit_cycle_measures import (RHO_C, bound_of, curve, cycle_measures, face_velocity_for_level, knee_slip,
                                      sdof_detuning)
 from solvers.contact.friction import monotone_slopes
 

@@ -97,7 +97,7 @@ def test_three_curve_line(tmp_path):
     assert rows[("B", "dry")]["cnossos_vs_physics"] == "agree: quiet"
     assert rows[("W", "wet")]["schall03_vs_physics"] == "penalised, quiet"
     # the verdict of the squealing row is the curve stage's (its verdict.csv, screen first)
-    from pipeline.verdict.stage import read_verdict
+    from pipeline.curve.stage import read_verdict
 
     v = {w["wheel"]: w for w in read_verdict(ROOT / "build" / "curves" / a["curve"] / "verdict.csv")}
     assert float(a["L_W"]) == pytest.approx(v["a1i"]["L_W"], abs=1e-4)

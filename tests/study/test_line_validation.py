@@ -22,7 +22,7 @@ def test_example_line_and_its_fragment():
         assert (out / f).exists(), f
     sq = [x for x in rows if x["squeals"] == "1"]
     assert len(list(csv.DictReader(open(out / "lw_railway.csv")))) == len(sq)
-    r = subprocess.run([sys.executable, "-m", "pipeline.study.line_doc"], cwd=ROOT, capture_output=True, text=True)
+    r = subprocess.run([sys.executable, "-m", "pipeline.validation.line_doc"], cwd=ROOT, capture_output=True, text=True)
     assert r.returncode == 0, r.stderr[-3000:]
     text = (ROOT / "docs" / "validation" / "94_line.md").read_text()
     assert "CNOSSOS-EU" in text and "Schall 03" in text and "Screen first against the curve stage" in text

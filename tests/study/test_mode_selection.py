@@ -22,7 +22,7 @@ MAP = ROOT / "build" / "studies" / "map-quick" / "map.csv"
 @pytest.fixture(scope="module")
 def squeals():
     """{case: [(mu, mode label)] of the squealing cases} of the quick map (built or resumed here)."""
-    from pipeline import artifacts, paths
+    from pipeline.store import artifacts, paths
     from pipeline.study.agreement import _time_loop_mode
 
     subprocess.run(["make", "-s", "--no-print-directory", "study", "STUDY=map", "QUICK=1", "WORKERS=2"],

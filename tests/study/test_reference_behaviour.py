@@ -8,8 +8,8 @@ the reference's mode in >= 80 % of the squealing cases at each position, squeal 
     make study STUDY=map [QUICK=1]; .venv/bin/python -m pytest -q --validation tests/study/test_reference_behaviour.py
 
 ``test_reference_rows`` (issue 28): every row of the issue's table measured on the map's simulation at
-5 creepages x 11 friction coefficients per position (``python -m pipeline.study.limit_cycle``:
-build/studies/limit-cycle/), with its verdict and computed reason (``pipeline.study.reference_rows``);
+5 creepages x 11 friction coefficients per position (``python -m pipeline.validation.limit_cycle_runs``:
+build/studies/limit-cycle/), with its verdict and computed reason (``pipeline.validation.reference_rows``);
 it writes its own section at the end of the fragment (kept when the map's part is rewritten) and
 asserts the parts reproduced.
 """
@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pipeline.artifacts import atomic_write
+from pipeline.store.artifacts import atomic_write
 
 ROOT = Path(__file__).resolve().parents[2]
 FRAGMENT = ROOT / "docs" / "validation" / "81_reference_behaviour.md"
@@ -48,10 +48,10 @@ def _rows():
 
 @pytest.mark.validation
 def test_reference_behaviour():
-    from pipeline import artifacts, paths
-    from pipeline.config import load
-    from pipeline.study.reference import reference_table
-    from pipeline.schemas import CASE
+    from pipeline.store import artifacts, paths
+    from pipeline.config.loader import load
+    from pipeline.validation.reference import reference_table
+    from pipeline.config.input_schemas import CASE
 
     name, rows = _rows()
     modes = {}
@@ -66,7 +66,7 @@ def test_reference_behaviour():
     # what the model reproduces now (issue 13), kept from regressing: at -5 mm the reference's mode in
     # >= 80 % of the squealing cases with mu < 0.45, and low-frequency oscillations dominate nowhere
     # below mu = 0.45
-    from pipeline.study.reference import REFERENCE, position_summary
+    from pipeline.validation.reference import REFERENCE, position_summary
 
     m5 = modes[next(r["case"] for r in rows if round(1e3 * r["dy_wr"]) == -5)]
     s5 = position_summary([r for r in rows if round(1e3 * r["dy_wr"]) == -5 and r["mu"] < 0.45], *m5)
@@ -107,11 +107,11 @@ Share of the squealing cases in the reference's L_W band: {bands}.
 
 @pytest.mark.validation
 def test_reference_rows():
-    from pipeline.study.reference_rows import evaluate, markdown
+    from pipeline.validation.reference_rows import evaluate, markdown
 
     d = ROOT / "build" / "studies" / "limit-cycle"
     if not (d / "slices.csv").exists():
-        pytest.fail("run `.venv/bin/python -m pipeline.study.limit_cycle` first")
+        pytest.fail("run `.venv/bin/python -m pipeline.validation.limit_cycle_runs` first")
     rows = evaluate(d)
     assert len(rows) == 5
     rep = {r["row"].split(":")[0] + ": " + k: v for r in rows for k, v in r["reproduced"].items()}
@@ -128,7 +128,7 @@ def test_reference_rows():
                 "squeals at mu = 0.25"):
         assert not rep[key], (key, rep)
     section = f"""{ROWS_MARK}
-Test: `tests/study/test_reference_rows` (validation suite), from `python -m pipeline.study.limit_cycle`
+Test: `tests/study/test_reference_rows` (validation suite), from `python -m pipeline.validation.limit_cycle_runs`
 (build/studies/limit-cycle/: the map's simulation and measures at gamma_y = -0.004, -0.012, -0.02,
 -0.04, -0.06 and mu = 0.10 ... 0.60 at each position; the screen; the friction curves' knees; the
 wheel's modal coupling at the contact points). The mechanism behind every reason is in "The limit

@@ -1,7 +1,7 @@
 """pipeline/study_report.py: the report's studies part takes each study's summary (the full
 version over the --quick one), moves its headings under the report's "Studies" and copies its
 figures."""
-from pipeline.study.report import embed, study_dirs
+from pipeline.study.report_section import embed, study_dirs
 
 
 def test_studies_are_embedded_with_their_figures(tmp_path):

@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from pipeline.artifacts import ArtifactError
+from pipeline.store.artifacts import ArtifactError
 from pipeline.study.results_table import ResultsTable
 
 COLS = {"x": float, "n": int, "label": str}

@@ -10,10 +10,10 @@ import sys
 import numpy as np
 import pytest
 
-from pipeline import artifacts, paths
+from pipeline.store import artifacts, paths
 from pipeline.study import stage as study_stage
-from pipeline.config import ConfigError, load
-from pipeline.schemas import CASE
+from pipeline.config.loader import ConfigError, load
+from pipeline.config.input_schemas import CASE
 from tests.study.conftest import ROOT
 
 
@@ -38,7 +38,7 @@ def studies(tmp_path, monkeypatch, default_case):
 
 
 def _simulate_artifact(case="default"):
-    from pipeline.simulate_stage import simulate_config
+    from pipeline.stages.simulate import simulate_config
 
     cfg = simulate_config(case)[-1]
     path = paths.case_dir(case) / "simulate.npz"
@@ -134,7 +134,7 @@ def test_unknown_study_lists_the_available(studies):
 def test_one_run_per_output_folder(studies):
     import fcntl
 
-    from pipeline.artifacts import ArtifactError
+    from pipeline.store.artifacts import ArtifactError
 
     out = studies("lock", 'name = "lock"\nkind = "damping"\ncases = ["default"]\n')
     out.mkdir(parents=True)

@@ -42,11 +42,11 @@ VARIANTS = [  # (label, f_r Hz, modal mass kg, (Phi_2, Phi_3), mu)
 def map_vs_simulate() -> tuple[list, list]:
     import os
 
-    from pipeline import artifacts, paths
+    from pipeline.store import artifacts, paths
     from pipeline.study import stage as study_stage
-    from pipeline.config import load
-    from pipeline.schemas import CASE
-    from pipeline.simulate_stage import simulate_config
+    from pipeline.config.loader import load
+    from pipeline.config.input_schemas import CASE
+    from pipeline.stages.simulate import simulate_config
 
     sims, lines = {}, []
     for case in CASES:

@@ -1,14 +1,14 @@
 """What is calibrated, to what, and the checks each calibration was not fitted to (issue 13):
 docs/validation/23_calibration.md (make validate; needs the map cases' contact and greens).
 
-* C20 section (pipeline/calibrate_wheel.py): fitted to the 34 reference eigenfrequencies and to the
-  coupling zero points of the (2,0,a) and (3,0,a) modes (targets from pipeline/calibrate_coupling.py).
+* C20 section (pipeline/validation/calibrate_wheel.py): fitted to the 34 reference eigenfrequencies and to the
+  coupling zero points of the (2,0,a) and (3,0,a) modes (targets from pipeline/validation/calibrate_coupling.py).
   Check not fitted to: the thesis' receptance plots (Fig. 4.4): the cross receptance strongest at the
   -15 mm contact point, the vertical point receptance nearly the same at the three points.
-* Vertical suspension damping (pipeline/calibrate_suspension.py): fitted to "no low-frequency growth
+* Vertical suspension damping (pipeline/validation/calibrate_suspension.py): fitted to "no low-frequency growth
   at -5 mm for mu <= 0.40".  Checks: it grows at 0.45 there; at -10 mm nothing low-frequency grows up
   to mu = 0.60 (a prediction of the reference's "only at -5 mm").
-* Worn profiles (pipeline/calibrate_profiles.py): the thesis' contact points; the patches are the
+* Worn profiles (pipeline/validation/calibrate_profiles.py): the thesis' contact points; the patches are the
   check (docs/validation, "Contact positions").
 """
 from __future__ import annotations
@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pipeline.artifacts import atomic_write
+from pipeline.store.artifacts import atomic_write
 
 ROOT = Path(__file__).resolve().parents[2]
 DOCS = ROOT / "docs" / "validation"
@@ -29,7 +29,7 @@ pytestmark = pytest.mark.validation
 
 def _ratio_line(modes, p, label, ys):
     """Phi_3/Phi_2 of mode ``label`` at the tread points ``ys`` and its zero by a line fit."""
-    from pipeline.calibrate_wheel import tread_ratio
+    from pipeline.validation.calibrate_wheel import tread_ratio
 
     r = np.array([tread_ratio(modes, p, y, label) for y in ys])
     slope, icpt = np.polyfit(ys, r, 1)
@@ -39,7 +39,7 @@ def _ratio_line(modes, p, label, ys):
 def _levels(modes, p, y, f):
     """Mean levels (dB re 1 m/N) of |G33| and |G23| over f at tread point y (the greens stage's point)."""
     from geometry.wheel import tread_radius
-    from solvers.receptance import contact_point, contact_shape, modal_damping, wheel_receptance
+    from solvers.wheel.receptance import contact_point, contact_shape, modal_damping, wheel_receptance
 
     surface = np.unique(np.concatenate([modes["boundary_tread"], modes["boundary_flange"]]))
     where = contact_point(modes["points"], surface, y, p["axle"]["rolling_circle_z"],
@@ -52,13 +52,13 @@ def _levels(modes, p, y, f):
 
 
 def test_calibration_report():
-    from pipeline import artifacts, paths
-    from pipeline.calibrate_suspension import CASE, MU_LOUD, MU_QUIET, lf_growth
-    from pipeline.calibrate_wheel import TARGETS, tread_ratio
+    from pipeline.store import artifacts, paths
+    from pipeline.validation.calibrate_suspension import CASE, MU_LOUD, MU_QUIET, lf_growth
+    from pipeline.validation.calibrate_wheel import TARGETS, tread_ratio
     from pipeline.study.map import grid_of
     from pipeline.study.stage import load_study
-    from pipeline.wheel_stage import load_wheel, reference_rows
-    from postprocess.mode_reference import match_modes, summary
+    from pipeline.stages.wheel import load_wheel, reference_rows
+    from postprocess.modes.reference import match_modes, summary
     from solvers.constants import THESIS_CONTACT_POINTS_FIELD
 
     p, _ = load_wheel("c20")
@@ -121,7 +121,7 @@ Frequencies: all {s['found']} reference labels found, median deviation {100 * s[
 
 Vertical-lateral coupling Phi_3/Phi_2 on the tread: the fit's target, its zero point y0 (line through
 10 points from -40 to +32 mm) and its values at y^W = -16, 0, +16, +32 mm. In full slip an axial mode is
-destabilised when -mu < Phi_3/Phi_2 < 0 (solvers/stability.py), and Phi_3/Phi_2 is close to linear in
+destabilised when -mu < Phi_3/Phi_2 < 0 (solvers/stability/screen.py), and Phi_3/Phi_2 is close to linear in
 y^W with its zero where the tyre section turns about in that mode; so these zero points decide which
 mode squeals at each contact point. The screen (`make calibrate-coupling`) puts them near -15 to -20 mm
 for (2,0,a) and -10 to -15 mm for (3,0,a), with (3,0,a)'s nearer the field side; the fit's compromise

@@ -3,7 +3,7 @@
 The C20 wheel cross-section (mount 'clamped': wheel alone, bore clamped) is
 revolved 360 degrees about the axle axis with the Gmsh OCC kernel and meshed
 with tetrahedra; a P2 dolfinx elasticity model gives the lowest modes by
-SLEPc shift-invert (MUMPS).  solvers.axisym.HarmonicSolver is run on EXACTLY
+SLEPc shift-invert (MUMPS).  solvers.wheel.axisym.HarmonicSolver is run on EXACTLY
 the same outline (a simplified version of the C20 outline: each named
 polyline is thinned by Douglas-Peucker to 0.75 mm, so the 3D model has no
 sub-millimetre edges that would force a fine mesh) with a fine 2D mesh.
@@ -33,7 +33,7 @@ import numpy as np
 import pytest
 
 from geometry.outline import Segment
-from pipeline.atomic import save_text
+from pipeline.store.atomic import save_text
 
 ROOT = Path(__file__).resolve().parents[2]
 N_MAX = 3  # harmonics compared
@@ -89,7 +89,7 @@ def outline_polygon(segs: list[Segment]) -> np.ndarray:
 # ----------------------------------------------------------------------------
 def harmonic_solver(segs: list[Segment], size: float, E, nu, rho):
     from geometry.mesher import mesh_section, read_msh
-    from solvers.axisym import HarmonicSolver
+    from solvers.wheel.axisym import HarmonicSolver
 
     segs = [Segment(s.name, s.points, size) for s in segs]
     with tempfile.TemporaryDirectory() as d:
@@ -188,7 +188,7 @@ def solve_3d(segs, h, E, nu, rho, nev, tol=1e-9) -> Solid3D:
     M = assemble_matrix(m_form)
     M.assemble()
 
-    from solvers.eigen import shift_invert
+    from solvers.wheel.eigen import shift_invert
 
     eps_ = shift_invert(K, Mb, nev, -(2 * np.pi * 5.0) ** 2, tol, 200, mesh.comm)
     nconv = eps_.getConverged()

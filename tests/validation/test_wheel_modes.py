@@ -15,9 +15,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pipeline.wheel_stage import load_wheel, modes_for_parameters, reference_rows
-from postprocess.mode_reference import markdown_table, match_modes, summary
-from pipeline.atomic import save_text
+from pipeline.stages.wheel import load_wheel, modes_for_parameters, reference_rows
+from postprocess.modes.reference import markdown_table, match_modes, summary
+from pipeline.store.atomic import save_text
 
 ROOT = Path(__file__).resolve().parents[2]
 DOCS = ROOT / "docs" / "validation"
@@ -43,7 +43,7 @@ def test_plates_against_kirchhoff(tmp_path):
     from tests.test_axis_regularity import A as DA, E, H as DH, NU, RHO
     from tests.test_harmonic_plate import A, B, H, plate_segments
     from geometry.mesher import mesh_section, read_msh
-    from solvers.axisym import HarmonicSolver
+    from solvers.wheel.axisym import HarmonicSolver
 
     rows = ["| plate | n | nodal circles | exact (Hz) | harmonic FE (Hz) | error |", "|---|---|---|---|---|---|"]
     names = mesh_section(plate_segments(), str(tmp_path / "plate.msh"))
@@ -170,7 +170,7 @@ def test_c20_against_reference_with_mesh_convergence(tmp_path):
 Test: `tests/validation/test_wheel_modes.py::test_c20_against_reference_with_mesh_convergence`
 (the fast `tests/test_c20_reference.py` asserts the same criteria on the default mesh). Reference: the 34
 modes below 7 kHz of the source thesis' Table 4.1 (`tests/reference/c20_modes.csv`). Matching is by label
-(n, m, class) as classified automatically by `solvers/classify.py`. Model: `geometry/wheels/c20.toml`
+(n, m, class) as classified automatically by `solvers/wheel/mode_labels.py`. Model: `geometry/wheels/c20.toml`
 (flexible wheel clamped at the bore, P2 triangles; the three rigid half-wheelset modes below 20 Hz are not
 in the table).
 

@@ -3,11 +3,11 @@ against the case schema with the operating point's values; an operating point ou
 range is one line naming the curve file and the key."""
 import pytest
 
-from pipeline import paths
-from pipeline.config import ConfigError, load
-from pipeline.schemas import CASE
-from pipeline.verdict.cases import wheel_case, write_case
-from pipeline.verdict.operating import CurveInfo, WheelPoint
+from pipeline.store import paths
+from pipeline.config.loader import ConfigError, load
+from pipeline.config.input_schemas import CASE
+from pipeline.curve.cases import wheel_case, write_case
+from pipeline.curve.operating import CurveInfo, WheelPoint
 
 INFO = CurveInfo(name="r150", radius=150.0, speed_kmh=40.0, cant=0.05, gauge=1.445, wheel="c20", rail="bv50",
                  vehicle="metro", friction={"mu": 0.35}, wheelbase=2.2, contact_spacing=1.5,

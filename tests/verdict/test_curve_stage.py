@@ -48,9 +48,9 @@ def test_shipped_curve_end_to_end():
     out = ROOT / "build" / "curves" / "r75"
     rows = {row["wheel"]: row for row in csv.DictReader(open(out / "verdict.csv"))}
     assert set(rows) == {"a1o", "a1i", "a2o", "a2i"}
-    from pipeline.config import load
-    from pipeline.curving import solve_curve
-    from pipeline.schemas import CASE
+    from pipeline.config.loader import load
+    from pipeline.curve.curving import solve_curve
+    from pipeline.config.input_schemas import CASE
 
     sol = {w.wheel: w for w in solve_curve("r75").wheels}
     for wid, row in rows.items():

@@ -1,8 +1,8 @@
-"""The field table's bookkeeping (pipeline/verdict/field.py): what each observation states, which
+"""The field table's bookkeeping (pipeline/validation/field.py): what each observation states, which
 levels are compared with the tool's and how, and the frequency difference, against hand-worked values."""
 import math
 
-from pipeline.verdict import field as F
+from pipeline.validation import field as F
 
 
 def obs(**kw):

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from solvers.mitigation import coulomb_curve_at, first_squeal, threshold
+from solvers.stability.mitigation import coulomb_curve_at, first_squeal, threshold
 
 
 def hertz_pressure(a=6e-3, b=4e-3, F3=65e3, d=0.5e-3):
@@ -44,8 +44,8 @@ def test_threshold_analytic():
 
 @pytest.fixture(scope="module")
 def default_models():
-    from pipeline.artifacts import ArtifactError
-    from pipeline.verdict.mitigation import CaseModels
+    from pipeline.store.artifacts import ArtifactError
+    from pipeline.curve.what_ifs import CaseModels
 
     try:
         return CaseModels("default")
@@ -55,7 +55,7 @@ def default_models():
 
 def test_friction_threshold_against_direct_scan(default_models):
     """The bisection's bracket holds the first unstable mu of a direct 0.005-step scan."""
-    from pipeline.verdict.mitigation import friction_what_if
+    from pipeline.curve.what_ifs import friction_what_if
 
     fr = friction_what_if(default_models, confirm=False)
     assert fr.mu_squeal - fr.mu_quiet <= 0.005
@@ -68,8 +68,8 @@ def test_friction_threshold_against_direct_scan(default_models):
 def test_damping_procedure_on_the_screen(default_models):
     """The (2,0,a) mode squeals at the default case; the damping it needs makes the screen quiet, and
     the growth rate at its nominal damping predicts it to first order: zeta ~ zeta0 + sigma / omega."""
-    from pipeline.verdict.mitigation import damping_what_if
-    from solvers.mitigation import growing_wheel_root
+    from pipeline.curve.what_ifs import damping_what_if
+    from solvers.stability.mitigation import growing_wheel_root
 
     d = damping_what_if(default_models, confirm=False)
     assert d.end.startswith("quiet")
@@ -88,7 +88,7 @@ def test_positive_creepage_screen_is_the_mirror_image(default_models):
     finds the default case's poles."""
     import dataclasses
 
-    from pipeline.verdict.mitigation import CaseModels
+    from pipeline.curve.what_ifs import CaseModels
 
     base = default_models
     w = dict(base.ctx.wheel)

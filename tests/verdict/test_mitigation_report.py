@@ -7,14 +7,14 @@ import time
 import numpy as np
 import pytest
 
-from pipeline.paths import ROOT
+from pipeline.store.paths import ROOT
 
 
 @pytest.mark.validation
 def test_write_mitigation_fragment():
-    from pipeline.verdict.mitigation import CaseModels, damping_what_if, friction_what_if
+    from pipeline.curve.what_ifs import CaseModels, damping_what_if, friction_what_if
     from solvers.contact.friction import rf_curve
-    from solvers.mitigation import coulomb_curve_at, first_squeal, growing_wheel_root
+    from solvers.stability.mitigation import coulomb_curve_at, first_squeal, growing_wheel_root
     from tests.verdict.test_mitigation import hertz_pressure
 
     p3, d = hertz_pressure()
@@ -44,8 +44,8 @@ def test_write_mitigation_fragment():
     rows = "\n".join(f"| {lab} | {f:.1f} | {a:.2g} | {z:.3g} |" for lab, (f, a, z) in need.items())
     text = f"""## The verdict's mitigation what-ifs (default case)
 
-`make curve` answers "what would stop it" for every squealing wheel (`pipeline/verdict/mitigation.py`,
-`solvers/mitigation.py`); here on the default case (C20/BV50, dy_WR = -15 mm, gamma_y = -0.014, mu = 0.35).
+`make curve` answers "what would stop it" for every squealing wheel (`pipeline/curve/what_ifs.py`,
+`solvers/stability/mitigation.py`); here on the default case (C20/BV50, dy_WR = -15 mm, gamma_y = -0.014, mu = 0.35).
 
 * **Friction curve at any mu.** Kalker's steady problem with Coulomb friction is homogeneous in (mu,
   creepage, traction), so the curve at mu is the one at mu_ref scaled. Against a direct TANG run at
@@ -71,6 +71,6 @@ def test_write_mitigation_fragment():
 Timings on the shared 2-core machine under load (noisy). Written by
 `tests/verdict/test_mitigation_report.py` (`pytest --validation`).
 """
-    from pipeline.atomic import save_text
+    from pipeline.store.atomic import save_text
 
     save_text(text, ROOT / "docs" / "validation" / "93_mitigation.md")

@@ -1,4 +1,4 @@
-"""The screen-first verdict (pipeline/verdict/screen_first.py) against the curve stage: the same
+"""The screen-first verdict (pipeline/curve/screen_first.py) against the curve stage: the same
 screen numbers for every wheel, the same time-loop verdict where it runs; its rail kernels are the
 greens stage's, bit for bit (a listed point's from its cached wave table against
 ``rail_kernel.build_kernel``; a surface point's against ``rail_surface.point_waves``)."""
@@ -7,9 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from pipeline.config import config_hash
-from pipeline.greens_stage import RAIL_F_MAX, RAIL_F_TAPER, RAIL_LAGS, RAIL_NT, rail_taper
-from pipeline.rail_stage import load_rail_params
+from pipeline.config.loader import config_hash
+from pipeline.stages.greens import RAIL_F_MAX, RAIL_F_TAPER, RAIL_LAGS, RAIL_NT, rail_taper
+from pipeline.stages.rail import load_rail_params
 
 GRID = {"n_t": RAIL_NT, "n_lags": RAIL_LAGS, "f_max": RAIL_F_MAX, "f_taper": RAIL_F_TAPER}
 DT = 36e-6
@@ -22,15 +22,15 @@ def _same(a: dict, b: dict):
 
 
 def test_surface_point_kernel_is_the_greens_stages():
-    from pipeline import rail_surface
-    from pipeline.verdict import rail_point
+    from pipeline.caches import rail_surface_table as rail_surface
+    from pipeline.curve import rail_point
 
     pr, _ = load_rail_params("bv50")
     h = config_hash(pr)
     y_r, v = -0.00733, 47.3 / 3.6                    # a point off contact.y, a speed no case uses
     k, a = rail_surface.point_waves(pr, h, abs(y_r), DT, GRID)
     ref = rail_surface.kernel_from_waves(k, a, v, DT, GRID, rail_taper)
-    from solvers.moving_kernel import mirror
+    from solvers.rail.moving_kernel import mirror
 
     ref = {key: (mirror(x) if key in ("rail_kernel", "rail_fixed_kernel", "rail_point_receptance") else x)
            for key, x in ref.items()}
@@ -39,8 +39,8 @@ def test_surface_point_kernel_is_the_greens_stages():
 
 
 def test_listed_point_kernel_is_build_kernels():
-    from pipeline import rail_kernel
-    from pipeline.verdict import rail_point
+    from pipeline.caches import rail_kernel
+    from pipeline.curve import rail_point
 
     pr, _ = load_rail_params("bv50")
     h = config_hash(pr)
@@ -54,8 +54,8 @@ def test_screen_first_equals_the_curve_stage():
     """r300 (the metro at 300 m, mu = 0.35): the curve stage screens and runs the time loop for all four
     wheels; screen first, the same screen numbers, and the wheels the screen finds unstable (a2o; a1o
     with some kernels' last digits) run in the time loop with the same L_F2; the others not run."""
-    from pipeline.verdict.screen_first import run_screen_first
-    from pipeline.verdict.stage import run_curve
+    from pipeline.curve.screen_first import run_screen_first
+    from pipeline.curve.stage import run_curve
 
     full = {r["wheel"]: r for r in run_curve("r300", progress_bar=False, what_ifs=False)["rows"]}
     first = {r["wheel"]: r for r in run_screen_first("r300", write=False)["rows"]}

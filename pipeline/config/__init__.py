@@ -1,0 +1,1 @@
+"""Inputs: TOML schemas, loading and validation, the resolved case, `make check`."""

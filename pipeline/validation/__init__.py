@@ -1,0 +1,1 @@
+"""Calibrations and the writers of docs/validation (run by `make validate`), published data they compare with."""

@@ -1,0 +1,344 @@
+"""Frequency-domain stability screen: the time loop linearised about steady rolling.
+
+The squeal time loop (``solvers.timeloop.interaction``, SPEC 3.5, 4.1-4.4) is a discrete-time
+system.  About its steady rolling state (preload F3, rigid slip w2 = gamma_y v; first with
+gamma_x = 0, so F1 = 0 throughout, both directions below) every part of it is linear in the deviations
+but the friction curve and the NORM table, and those two are linearised:
+
+* structures, [4.13]-[4.15]: xi[n] = sum_{k>=1} (g^R_mov[k] + g^W[k]) dF[n-k], with
+  xi = xi^R - xi^W on directions (2, 3).  In the z domain xi = Y(z) dF with
+  Y(z) = sum_k g[k] z^-k; the wheel part is the exact transform of the recursive
+  modal filters (one pole pair per mode), the rail part the finite sum over the
+  moving kernel's lags;
+* normal contact [4.19]-[4.24]: dF3 = -k_c dxi3 (k_c = dF3/d approach of the NORM
+  table at the static approach);
+* tangential point contact [4.25]-[4.31] with s2 < 0 (gamma_y < 0, F2 > 0):
+  F2 = mu_RF(|s2|) F3, s2 = gamma_y v + (A2 (F2[n] - F2[n-1]) + xi2[n] - xi2[n-1]) / dt, so
+  dF2 = mu0 dF3 - q (A2 dF2 + F2 A2' dF3 / k_c + dxi2) with q = F3 mu_RF'(s0) (1 - z^-1) / dt
+  (mu0 = mu_RF(s0), s0 = |gamma_y| v; in full slip mu_RF' = 0 and dF2 = mu0 dF3); the time loop's
+  compliance A2 follows the approach (the patch grows with F3), hence the A2' = dA2/d approach term
+  with F2 = mu0 F3.
+
+So M(z) dF = 0 with
+
+    M = [[1 + q A2 + q Y22,   -mu0 + q (Y23 + mu0 F3 A2' / k_c)],
+         [k_c Y32,             1 + k_c Y33 ]]
+
+and the closed-loop poles are the roots z = exp(s dt) of D(s) = det M.  In full
+slip D = 1 + k_c (Y33 + mu0 Y32): the single-mode estimate of the interaction
+validation (kappa_r = Phi3 (Phi3 + mu Phi2) < 0 destabilises) is its one-mode limit.
+
+Both tangential directions (traction gamma_x, spin: ``linearise(..., gamma_x=, spin=)``).  With
+the steady slip w = (gamma_x + L1 phi, gamma_y + L2 phi) v (spin phi as the point contact's
+equivalent creepages, ``solvers.contact.spin``), sigma0 = |w|, e = w / sigma0 (e2 < 0), the force
+F_tau = -F3 mu_RF(sigma) s_tau / sigma linearises to dF = -mu0 e dF3 - K ds with
+
+    K = F3 [mu_RF'(sigma0) e e^T + (mu0 / sigma0) (I - e e^T)]
+
+(along the slip the curve's slope, a falling curve's negative one feeding energy in; across it
+the direction's stiffness mu0 / sigma0 > 0), ds_tau = D (A_tau dF_tau + F0_tau A_tau' dF3 / k_c +
+delta_tau2 dxi2), D = (1 - z^-1) / dt, and no structural motion in direction 1 (the loop has
+none).  Eliminating dF1 (its row has no structure: 1 + K11 D A1 is a contact-only factor, a real
+pole z in (0, 1)) leaves a 2x2 M whose first row is the one above with the Schur complement
+terms; for e1 = 0 (gamma_x = 0, a symmetric patch) K is diagonal and M is the matrix above.
+
+Roots.  Near each lightly damped wheel mode r: the secant method on D times mode r's
+pole pair (regular at the open-loop pole), started at the pole, with the rest of Y
+(the other modes and the rail) expanded to first order about the pole (``Basis``:
+computed once per structure, shared by every friction, creepage and contact
+stiffness), then polished on the exact D.  The low-frequency roots of the wheelset
+on the track (20-400 Hz): local minima of |D| on a grid of s (the rail's transform
+along a line of constant sigma is one FFT of g[k] exp(-sigma k dt)), refined on the
+exact D.  Below sigma ~ -30/s the finite kernel's transform amplifies its truncated
+tail, so strongly damped track roots are not sought.  Growth rate sigma = Re s (1/s),
+frequency Im s / 2 pi.
+"""
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+from solvers.wheel.modal_filter import modal_filter
+
+
+class LinearModel(NamedTuple):
+    """The linearised time loop (module notes).  Units SI."""
+    f_r: np.ndarray          # wheel modal frequencies (Hz), (M,)
+    modal_mass: np.ndarray   # (M,) kg
+    zeta: np.ndarray         # (M,)
+    phi: np.ndarray          # (M, 2) = (Phi_2, Phi_3) at the contact point
+    rail_kernel: np.ndarray  # moving Green's function (K, 2, 2) m/N, g[0] unused
+    dt: float                # time step (s)
+    kc: float                # normal contact stiffness dF3/d approach (N/m)
+    mu0: float               # mu_RF at the operating slip
+    dmu: float               # d mu_RF / d s at the operating slip (s/m)
+    F3: float                # preload (N)
+    A2: float                # lateral tangential compliance (m/N)
+    dA2: float = 0.0         # d A2 / d approach at the static approach (1/N): the patch grows with F3
+    A1: float = 0.0          # longitudinal tangential compliance (m/N)
+    dA1: float = 0.0         # d A1 / d approach (1/N)
+    e1: float = 0.0          # slip direction e = w / |w| at the operating point (e2 = -sqrt(1 - e1^2))
+    sigma0: float = 0.0      # |w| (m/s), the operating slip velocity (used for e1 != 0)
+
+
+class Root(NamedTuple):
+    f_hz: float              # frequency of the closed-loop pole (Hz)
+    sigma: float             # growth rate (1/s), > 0 unstable
+    mode: int                # index of the wheel mode it continues (-1: low-frequency track root)
+
+
+# ------------------------------------------------------------------------------ transforms
+
+def _modal_terms(filt, z: np.ndarray) -> np.ndarray:
+    """Per-mode scalar transforms h_r(z) (P, M): kind 0 (zeta < 1) y[k] = Im(p^k) ->
+    (p/(z-p) - p*/(z-p*)) / 2i; kind 1 (two real poles a, b) y[k] = (a^k - b^k)/(a - b)
+    (modal_filter's two-state recursion), a = b (zeta = 1): y[k] = k a^(k-1) -> z/(z-a)^2."""
+    zz = np.asarray(z, complex).reshape(-1, 1)
+    kind, zp, p2 = filt.kind, filt.z, filt.p2
+    H = np.empty((zz.shape[0], len(kind)), complex)
+    k0 = kind == 0
+    a, b = zp[None, k0], np.conj(zp[None, k0])
+    H[:, k0] = (a / (zz - a) - b / (zz - b)) / 2j
+    if (~k0).any():
+        a, b = zp[None, ~k0].real, p2[None, ~k0].real
+        same = np.abs(a - b) <= 1e-12 * np.abs(a)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            H[:, ~k0] = np.where(same, zz / (zz - a) ** 2, (a / (zz - a) - b / (zz - b)) / np.where(same, 1.0, a - b))
+    return H
+
+
+def _wheel_z(filt, z, skip: int = -1) -> np.ndarray:
+    """Y^W at one point z (2, 2), optionally without mode ``skip``."""
+    h = _modal_terms(filt, z)[0]
+    if skip >= 0:
+        h[skip] = 0.0
+    return (h @ _outer(filt)).reshape(2, 2)
+
+
+def _outer(filt) -> np.ndarray:
+    """(M, 4): w_out[r] w_in[r]^T of every mode, flattened."""
+    return np.einsum("ri,rj->rij", filt.w_out, filt.w_in).reshape(-1, 4)
+
+
+def wheel_receptance_z(model: LinearModel, z: complex) -> np.ndarray:
+    """Y^W(z) (2, 2): the z-transform of the modal filters' kernel (g[0] = 0)."""
+    return _wheel_z(_filter(model), z)
+
+
+def rail_receptance_z(kernel: np.ndarray, z: complex) -> np.ndarray:
+    """Y^R(z) = sum_{k>=1} g[k] z^-k (2, 2) of the moving kernel."""
+    w = np.exp(-np.log(complex(z)) * np.arange(1, kernel.shape[0]))
+    K = kernel[1:].reshape(-1, 4)
+    return (w.real @ K + 1j * (w.imag @ K)).reshape(2, 2)
+
+
+def _filter(model: LinearModel):
+    return modal_filter(model.dt, model.f_r, model.modal_mass, model.zeta, model.phi)
+
+
+def _det(model, Y: np.ndarray, z, scale=1.0):
+    """det M for Y (..., 2, 2) at z (...) (module notes); with ``scale`` c and Y = c Y_true,
+    det(c M) = c^2 D."""
+    if model.e1 != 0.0:
+        return _det2(model, Y, z, scale)
+    q = model.F3 * model.dmu * (1.0 - 1.0 / z) / model.dt
+    M00 = scale * (1.0 + q * model.A2) + q * Y[..., 0, 0]
+    M01 = (-model.mu0 + q * model.mu0 * model.F3 * model.dA2 / model.kc) * scale + q * Y[..., 0, 1]
+    return M00 * (scale + model.kc * Y[..., 1, 1]) - M01 * model.kc * Y[..., 1, 0]
+
+
+def _det2(model, Y, z, scale=1.0):
+    """``_det`` with both tangential directions (module notes: dF1 eliminated)."""
+    m = model
+    e1 = m.e1
+    e2 = -np.sqrt(1.0 - e1 * e1)
+    D = (1.0 - 1.0 / z) / m.dt
+    g = m.mu0 / m.sigma0
+    K11 = m.F3 * (m.dmu * e1 * e1 + g * (1.0 - e1 * e1))
+    K22 = m.F3 * (m.dmu * e2 * e2 + g * (1.0 - e2 * e2))
+    K12 = m.F3 * (m.dmu - g) * e1 * e2
+    F01, F02 = -m.F3 * m.mu0 * e1, -m.F3 * m.mu0 * e2
+    rho = K12 * D * m.A1 / (1.0 + K11 * D * m.A1)
+    c12 = K12 * D * (m.A2 * scale + Y[..., 0, 0])
+    c13 = scale * (m.mu0 * e1 + D * (K11 * F01 * m.dA1 + K12 * F02 * m.dA2) / m.kc) + K12 * D * Y[..., 0, 1]
+    c22 = scale + K22 * D * (m.A2 * scale + Y[..., 0, 0])
+    c23 = scale * (m.mu0 * e2 + D * (K12 * F01 * m.dA1 + K22 * F02 * m.dA2) / m.kc) + K22 * D * Y[..., 0, 1]
+    M00 = c22 - rho * c12
+    M01 = c23 - rho * c13
+    return M00 * (scale + m.kc * Y[..., 1, 1]) - M01 * m.kc * Y[..., 1, 0]
+
+
+def characteristic(model: LinearModel, s: complex, filt=None) -> complex:
+    """D(s) = det M(exp(s dt)) (module notes)."""
+    filt = filt if filt is not None else _filter(model)
+    z = np.exp(s * model.dt)
+    return _det(model, _wheel_z(filt, z) + rail_receptance_z(model.rail_kernel, z), z)
+
+
+# ------------------------------------------------------------------------------ root finding
+
+def _secant(fun, s0: complex, tol: float = 1e-10, max_iter: int = 60) -> complex | None:
+    """Secant iteration on a complex analytic function: a root (relative step below ``tol`` and
+    |fun| below 1e-6 of its value at the start) or None."""
+    s1 = s0 * (1 + 1e-6) + 1e-3
+    with np.errstate(all="ignore"):
+        f0, f1 = fun(s0), fun(s1)
+        scale = max(abs(f0), abs(f1))
+        for _ in range(max_iter):
+            if f1 == f0:
+                return None
+            s2 = s1 - f1 * (s1 - s0) / (f1 - f0)      # s2 = s1 - f1 (s1 - s0) / (f1 - f0)
+            if not np.isfinite(s2):
+                return None
+            s0, f0, s1, f1 = s1, f1, s2, fun(s2)
+            if abs(s1 - s0) <= tol * max(abs(s1), 1.0):
+                return s1 if abs(f1) <= 1e-6 * scale else None
+    return None
+
+
+class Basis:
+    """The structures' transforms, computed once and shared by every operating point (friction,
+    creepage, contact stiffness): per lightly damped mode r the rest of Y (other modes + rail)
+    and its s-derivative at mode r's open-loop pole; Y on the low-frequency grid."""
+
+    def __init__(self, model: LinearModel, f_lo: float = 20.0, f_hi: float = 400.0, sigma_lo: float = -20.0,
+                 sigma_hi: float = 400.0):
+        self.model, self.filt = model, _filter(model)
+        self.f_lo, self.f_hi, self.sigma_lo, self.sigma_hi = f_lo, f_hi, sigma_lo, sigma_hi
+        dt, g = model.dt, model.rail_kernel
+        self.modes = np.flatnonzero(np.asarray(model.zeta) < 0.5)
+        self.s0 = np.log(self.filt.z[self.modes]) / dt
+        k = np.arange(1, g.shape[0]) * dt
+        E = np.exp(-np.outer(self.s0, k))                          # z^-k at each pole
+        G = g[1:].reshape(len(k), 4)
+        self.rail0 = (E @ G).reshape(-1, 2, 2)
+        self.rail1 = (-(E * k) @ G).reshape(-1, 2, 2)              # d/ds sum g[k] exp(-s k dt)
+        z0 = np.exp(self.s0 * dt)
+        with np.errstate(divide="ignore", invalid="ignore"):             # mode r's own pole, dropped below
+            h = _modal_terms(self.filt, z0)
+            dh = (_modal_terms(self.filt, np.exp((self.s0 + 1e-3) * dt)) - h) / 1e-3
+        ww = np.einsum("ri,rj->rij", self.filt.w_out, self.filt.w_in)
+        for a, r in enumerate(self.modes):                          # drop mode r from its own rest
+            h[a, r] = dh[a, r] = 0.0
+        self.rest0 = np.einsum("ar,rij->aij", h, ww) + self.rail0
+        self.rest1 = np.einsum("ar,rij->aij", dh, ww) + self.rail1
+        self.ww, self.z0 = ww, z0
+        self._grid()
+
+    def _grid(self):
+        m = self.model
+        g = m.rail_kernel.copy()
+        g[0] = 0.0
+        n_fft = 1 << int(np.ceil(np.log2(max(len(g), 1.0 / (2.0 * m.dt)))))
+        fb = np.fft.fftfreq(n_fft, m.dt)
+        cols = np.flatnonzero((fb >= self.f_lo) & (fb <= self.f_hi))
+        sg = np.arange(self.sigma_lo, self.sigma_hi + 1e-9, 10.0)
+        kk = np.arange(len(g))
+        self.S = sg[:, None] + 2j * np.pi * fb[cols][None, :]
+        self.Z = np.exp(self.S * m.dt)
+        Yr = np.stack([np.fft.fft(g * np.exp(-s * kk * m.dt)[:, None, None], n=n_fft, axis=0)[cols] for s in sg])
+        Yw = np.einsum("pr,rij->pij", _modal_terms(self.filt, self.Z.ravel()), self.ww).reshape(*self.Z.shape, 2, 2)
+        self.Ygrid = Yr + Yw
+
+
+def wheel_roots(model: LinearModel, basis: Basis | None = None, polish: bool = True) -> list[Root]:
+    """The closed-loop pole continuing each lightly damped wheel mode (zeta < 0.5)."""
+    b = basis if basis is not None else Basis(model)
+    out = []
+    for a, r in enumerate(b.modes):
+        zr, ww = b.filt.z[r], b.ww[r]
+
+        def fun(s, exact=False, a=a, r=r, zr=zr, ww=ww):
+            z = np.exp(s * model.dt)
+            pp = (z - zr) * (z - np.conj(zr))
+            hr = (zr * (z - np.conj(zr)) - np.conj(zr) * (z - zr)) / 2j      # mode r's term times pp
+            rest = (_wheel_z(b.filt, z, skip=r) + rail_receptance_z(model.rail_kernel, z) if exact
+                    else b.rest0[a] + b.rest1[a] * (s - b.s0[a]))
+            return _det(model, pp * rest + hr * ww, z, pp) / pp              # = pp D(s): regular at the pole
+        s = _secant(fun, complex(b.s0[a]) + complex(1e-3, 1e-3))
+        if s is not None and polish:
+            s = _secant(lambda x: fun(x, True), s)
+        if s is not None and abs(s.imag - b.s0[a].imag) < 0.2 * abs(b.s0[a].imag) + 2 * np.pi * 5:
+            out.append(Root(s.imag / (2 * np.pi), s.real, int(r)))
+    return out
+
+
+def track_roots(model: LinearModel, basis: Basis | None = None, polish: bool = True) -> list[Root]:
+    """Closed-loop poles of the wheelset on the track inside the basis' (f, sigma) window; without
+    ``polish`` one Newton step on the grid's values (D and its s-derivative by central differences
+    along the frequency axis, D being analytic) instead of the secant on the exact D."""
+    b = basis if basis is not None else Basis(model)
+    from scipy.ndimage import minimum_filter
+
+    D = _det(model, b.Ygrid, b.Z)
+    L = np.log(np.abs(D))
+    cand = L <= minimum_filter(L, size=3, mode="nearest")
+    cand[:, [0, -1]] = False
+    fun = lambda s: characteristic(model, s, b.filt)                                     # noqa: E731
+    found = []
+    for i, j in zip(*np.nonzero(cand)):
+        if polish:
+            s = _secant(fun, complex(b.S[i, j]), max_iter=25)
+        else:
+            dD = (D[i, j + 1] - D[i, j - 1]) / (b.S[i, j + 1] - b.S[i, j - 1])
+            s = complex(b.S[i, j] - D[i, j] / dD)
+            if abs(s - b.S[i, j]) > abs(b.S[i, j + 1] - b.S[i, j - 1]) + 10.0:
+                s = None
+        if (s is not None and b.f_lo <= s.imag / (2 * np.pi) <= b.f_hi
+                and b.sigma_lo - 5 <= s.real <= b.sigma_hi and all(abs(s - t) > 1e-4 * abs(s) for t in found)):
+            found.append(s)
+    return [Root(s.imag / (2 * np.pi), s.real, -1) for s in sorted(found, key=lambda s: s.imag)]
+
+
+def screen(model: LinearModel, basis: Basis | None = None, polish: bool = True) -> list[Root]:
+    """All closed-loop poles the screen seeks, fastest growing first."""
+    b = basis if basis is not None else Basis(model)
+    wheel = wheel_roots(model, b, polish)
+    # a track root found again at a wheel root (the grid also sees the modes between 20 and 400 Hz)
+    track = [t for t in track_roots(model, b, polish)
+             if all(abs(complex(t.sigma, t.f_hz) - complex(w.sigma, w.f_hz)) > 1e-3 * w.f_hz + 0.5 for w in wheel)]
+    return sorted(wheel + track, key=lambda r: -r.sigma)
+
+
+def operating_point(model: LinearModel, contact, *, v: float, gamma_y: float, gamma_x: float = 0.0,
+                    spin: float = 0.0, spin_length=(0.0, 0.0)) -> LinearModel:
+    """``model`` at another friction curve / creepage: mu0, dmu from ``contact``'s curve at the
+    steady slip |w|, w = (gamma_x + L1 spin, gamma_y + L2 spin) v, and its direction (the
+    structures, k_c and the compliances kept; module notes)."""
+    from solvers.contact.friction import mu_and_slope
+
+    w1 = (gamma_x + spin_length[0] * spin) * v
+    w2 = (gamma_y + spin_length[1] * spin) * v
+    sigma0 = float(np.hypot(w1, w2))              # (the lateral slip is taken as negative: F2 > 0)
+    mu0, dmu = mu_and_slope(sigma0, contact.s_nodes, contact.mu_nodes, contact.slopes)
+    return model._replace(mu0=float(mu0), dmu=float(dmu), e1=float(w1 / sigma0) if sigma0 > 0 else 0.0, sigma0=sigma0)
+
+
+def linearise(wheel, rail_kernel: np.ndarray, contact, *, dt: float, v: float, gamma_y: float,
+              preload: float, gamma_x: float = 0.0, spin: float = 0.0) -> LinearModel:
+    """The LinearModel of the time loop's steady rolling state.
+
+    wheel: ``interaction.WheelModes``; rail_kernel: the moving Green's function (K, 2, 2);
+    contact: ``interaction.ContactModel``; dt (s), v (m/s), gamma_y (< 0), preload F3 (N),
+    gamma_x, spin (1/m) as in the time loop."""
+    from solvers.contact.compliance import table_compliance
+    from solvers.contact.norm import table_force
+    from solvers.timeloop.interaction import static_approach
+    from solvers.timeloop.driver import spin_length
+
+    if gamma_y >= 0:
+        raise ValueError(f"linearise: gamma_y = {gamma_y} must be negative (F2 > 0 on the rail)")
+    app = static_approach(contact, preload)
+    h = 1e-6 * app
+    kc = (table_force(app + h, contact.xi3_nodes, contact.q_nodes)
+          - table_force(app - h, contact.xi3_nodes, contact.q_nodes)) / (2 * h)
+    A = [table_compliance(app, contact.xi3_nodes, n) for n in (contact.A1_nodes, contact.A2_nodes)]
+    dA = [(table_compliance(app + h, contact.xi3_nodes, n) - table_compliance(app - h, contact.xi3_nodes, n)) / (2 * h)
+          for n in (contact.A1_nodes, contact.A2_nodes)]
+    base = LinearModel(np.asarray(wheel.f_r, float), np.asarray(wheel.modal_mass, float),
+                       np.asarray(wheel.zeta, float), np.asarray(wheel.phi, float),
+                       np.asarray(rail_kernel, float), float(dt), float(kc), 0.0, 0.0, float(preload), float(A[1]),
+                       float(dA[1]), float(A[0]), float(dA[0]))
+    L = spin_length(contact, app, v) if spin != 0.0 else (0.0, 0.0)
+    return operating_point(base, contact, v=v, gamma_y=gamma_y, gamma_x=gamma_x, spin=spin, spin_length=L)

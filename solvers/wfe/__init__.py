@@ -1,1 +1,0 @@
-"""The rail's waveguide finite elements, one idea a module (notes and public names: ``solvers.waveguide``)."""
