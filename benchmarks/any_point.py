@@ -33,7 +33,7 @@ DY = -0.022
 
 
 def _grid():
-    from pipeline.stages.greens import RAIL_F_MAX, RAIL_F_TAPER, RAIL_LAGS, RAIL_NT
+    from solvers.greens.grid import RAIL_F_MAX, RAIL_F_TAPER, RAIL_LAGS, RAIL_NT
 
     return {"n_t": RAIL_NT, "n_lags": RAIL_LAGS, "f_max": RAIL_F_MAX, "f_taper": RAIL_F_TAPER}
 
@@ -49,7 +49,7 @@ def _case_dir() -> Path:
 def _rail_rows(y: float) -> list:
     from geometry.rail_mesh import mesh_rail
     from pipeline.config.loader import config_hash
-    from pipeline.stages.greens import rail_taper
+    from solvers.greens.grid import rail_taper
     from pipeline.caches.rail_kernel import wave_table_threads
     from pipeline.stages.rail_io import build_rail_model
     from pipeline.stages.rail import load_rail_params

@@ -29,7 +29,8 @@ TARGET = 1.0                                                 # s per new value
 
 def _static_contact():
     """(p3, dx, dy, v, E, nu) of the default case's static contact (the contact stage's code)."""
-    from pipeline.stages.contact import contact_setup, static_contact
+    from solvers.contact.static import static_contact
+    from pipeline.stages.contact import contact_setup
 
     c, pw, _, geo, _ = contact_setup("default")
     E, nu = pw["material"]["E"], pw["material"]["nu"]

@@ -24,8 +24,8 @@ N_CASES = 80
 def run() -> str:
     from benchmarks.baseline import BASELINE, previous
     from pipeline.study.context import load_context
-    from pipeline.study.map import grid_of
-    from pipeline.study.stage import load_study
+    from pipeline.study.definition import grid_of
+    from pipeline.study.definition import load_study
     from pipeline.study.worker import _contact, _warm, _wheel
     from solvers.timeloop.interaction import StopRule, simulate
 

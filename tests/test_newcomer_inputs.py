@@ -146,7 +146,7 @@ def test_time_step_the_rail_kernel_cannot_decay_in(tmp_path):
     """dt = 20e-6: the greens stage stopped with a traceback (the rail Green's function on Kropp's
     8192 steps had decayed by 47 dB only, not 60, at N_t dt / 2 = 82 ms); check refuses it with
     the reason and the allowed range, from the rail's decay measured on its cached kernel."""
-    from pipeline.stages.greens import RAIL_NT
+    from solvers.greens.grid import RAIL_NT
 
     env = _case(tmp_path, "dt", DEFAULT.replace("dt = 36e-6", "dt = 20e-6"))
     T = _moving_kernel(tmp_path / "build", tau=0.0145)

@@ -26,7 +26,6 @@ from pipeline.store import artifacts, paths
 
 log = logging.getLogger("pipeline.caches.friction_curves")
 
-CURVE_CODE = ("solvers/contact/*.py",)      # the code a cached curve depends on (its bytes are hashed)
 CURVE_KIND = "friction-curve"
 
 
@@ -177,9 +176,10 @@ def compute_curve(p3, dx: float, dy: float, v: float, friction: Friction, E: flo
 
 
 def code_hash() -> str:
-    from pipeline.store.code_hash import code_hash as files_hash
+    """The key of the code a cached curve depends on: what ``compute_curve`` reaches."""
+    from pipeline.store.code_hash import code_key
 
-    return files_hash(CURVE_CODE)
+    return code_key("pipeline.caches.friction_curves:compute_curve")
 
 
 def contact_key(p3, dx: float, dy: float, v: float, E: float, nu: float) -> str:

@@ -31,16 +31,11 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from pipeline.store import artifacts, paths
-from pipeline.store.code_hash import code_hash
+from pipeline.store.code_hash import code_key
 
 log = logging.getLogger("pipeline.greens")
 
 KIND = "rail-moving-kernel"
-# the code the kernel's numbers depend on (hashed into the key)
-CODE = ["solvers/rail/waveguide.py", "solvers/rail/wfe/assembly.py", "solvers/rail/wfe/family.py", "solvers/rail/wfe/section.py",
-        "solvers/rail/wfe/waves.py", "solvers/rail/model.py", "solvers/rail/reduced.py", "solvers/rail/response.py",
-        "solvers/greens/kernels.py", "solvers/greens/kropp.py", "solvers/greens/band_fit.py", "solvers/rail/moving_kernel.py", "geometry/rail.py",
-        "geometry/rail_mesh.py", "pipeline/caches/rail_kernel.py", "pipeline/stages/rail_io.py"]
 
 
 def kernel_config(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, grid: dict) -> dict:
@@ -48,7 +43,7 @@ def kernel_config(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, gri
     f_max, f_taper (pipeline.stages.greens's RAIL_* settings)."""
     mesh = paths.rail_dir(pr["name"]) / "section.msh"
     return {"rail": rail_hash, "mesh": hashlib.sha256(mesh.read_bytes()).hexdigest()[:16],
-            "code": code_hash(CODE), "y_r_abs": round(abs(float(y_r)), 9), "v": float(v), "dt": float(dt),
+            "code": code_key("pipeline.caches.rail_kernel:build_kernel"), "y_r_abs": round(abs(float(y_r)), 9), "v": float(v), "dt": float(dt),
             **{k: (int(x) if k.startswith("n_") else float(x)) for k, x in grid.items()}}
 
 

@@ -25,7 +25,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from pipeline.store import artifacts, paths
-from pipeline.store.code_hash import code_hash
+from pipeline.store.code_hash import code_key
 
 log = logging.getLogger("pipeline.greens")
 
@@ -36,9 +36,10 @@ K_LOCAL = 20.0  # rad/m: the static near field subtracted (as solvers.rail.respo
 # receptance): 1e-12 gives 1e-11 of the kernel's peak against 1e-17 (measured), ~2x faster, far below the
 # table's own 2e-3 against the direct construction (docs/validation/53_any_rail_point.md)
 KERNEL_TOL = 1e-12
-TABLE_VERSION = 1  # of build_table's procedure (its numbers depend on solvers/rail/surface.py, hashed, and on it)
-TABLE_CODE = ["solvers/rail/surface.py"]
-KERNEL_CODE = ["pipeline/caches/rail_surface_table.py", "solvers/rail/moving_static.py"]
+TABLE_VERSION = 1  # of build_table's procedure (its code is hashed as well: TABLE_FUNCTIONS)
+# the functions whose results are cached; their code (what they reach) is hashed into the keys
+TABLE_FUNCTIONS = ("pipeline.caches.rail_surface_table:build_table",)
+KERNEL_FUNCTIONS = ("pipeline.caches.rail_surface_table:kernel_from_waves",)
 
 
 def table_config(pr: dict, rail_hash: str, dt: float, grid: dict) -> dict:
@@ -49,7 +50,7 @@ def table_config(pr: dict, rail_hash: str, dt: float, grid: dict) -> dict:
     cfg = kernel_config(pr, rail_hash, 0.0, 1.0, dt, grid)
     for k in ("y_r_abs", "v", "n_lags"):
         cfg.pop(k, None)
-    cfg["surface"] = {"spacing": SPACING, "k_local": K_LOCAL, "code": code_hash(TABLE_CODE), "version": TABLE_VERSION}
+    cfg["surface"] = {"spacing": SPACING, "k_local": K_LOCAL, "code": code_key(*TABLE_FUNCTIONS), "version": TABLE_VERSION}
     return cfg
 
 
@@ -135,7 +136,7 @@ def surface_kernel(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, gr
 
     rail_mesh(pr)
     cfg = dict(kernel_config(pr, rail_hash, y_r, v, dt, grid), surface=table_config(pr, rail_hash, dt, grid)["surface"],
-               surface_kernel=code_hash(KERNEL_CODE))
+               surface_kernel=code_key(*KERNEL_FUNCTIONS))
     path = kernel_path(pr["name"], cfg)
     try:
         arrays, _ = artifacts.load_npz(path, KIND_KERNEL, cfg)

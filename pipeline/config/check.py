@@ -62,7 +62,7 @@ def run_check(case: str, wheel: str | None, rail: str | None) -> list[str]:
     Raises ConfigError (one line) at the first problem."""
     from pipeline.config.loader import ConfigError, load
     from pipeline.caches.friction_curves import case_friction
-    from pipeline.stages.greens import rail_point
+    from pipeline.stages.rail_io import rail_point
     from pipeline.config.case_profiles import contact_geometry
     from pipeline.stages.rail import load_rail_params
     from pipeline.config.input_schemas import CASE
@@ -155,7 +155,7 @@ def time_step_problem(c: dict, rail: str) -> str | None:
     must have decayed by 60 dB at N_t dt / 2 (pipeline.caches.rail_kernel); how fast the rail's response
     decays is measured on a moving kernel of this rail already built (``rail_decay_time``); without
     one there is nothing to measure and the greens stage checks it."""
-    from pipeline.stages.greens import RAIL_NT, WHEEL_BAND_LIMIT
+    from solvers.greens.grid import RAIL_NT, WHEEL_BAND_LIMIT
 
     dt = c["time"]["dt"]
     hi = 0.5 / WHEEL_BAND_LIMIT

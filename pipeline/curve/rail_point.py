@@ -136,16 +136,16 @@ def surface_arrays(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, gr
     from solvers.rail.moving_kernel import mirror
     from solvers.rail.surface import point_amplitudes, point_weights
 
-    from pipeline.store.code_hash import code_hash
+    from pipeline.store.code_hash import code_key
     from pipeline.caches.rail_kernel import kernel_config, kernel_path
     from pipeline.stages.rail import rail_mesh
-    from pipeline.caches.rail_surface_table import KERNEL_CODE, KIND_KERNEL, KIND_NODE, KIND_WAVES, kernel_from_waves, table_config
+    from pipeline.caches.rail_surface_table import KERNEL_FUNCTIONS, KIND_KERNEL, KIND_NODE, KIND_WAVES, kernel_from_waves, table_config
     from pipeline.caches.rail_surface_table import table_dir
 
     rail_mesh(pr)
     tcfg = table_config(pr, rail_hash, dt, grid)
     cfg = dict(kernel_config(pr, rail_hash, y_r, v, dt, grid), surface=tcfg["surface"],
-               surface_kernel=code_hash(KERNEL_CODE))
+               surface_kernel=code_key(*KERNEL_FUNCTIONS))
     path = kernel_path(pr["name"], cfg)
     try:
         arrays, _ = artifacts.load_npz(path, KIND_KERNEL, cfg)
@@ -169,7 +169,8 @@ def rail_arrays(pr: dict, y_r: float, v: float, dt: float) -> dict:
     """``greens_stage.rail_greens``'s arrays at the rail model's point y_r (``greens_stage.rail_point``),
     a listed point's through ``listed_kernel``."""
     from pipeline.config.loader import config_hash
-    from pipeline.stages.greens import RAIL_F_MAX, RAIL_F_TAPER, RAIL_LAGS, RAIL_NT, rail_greens, rail_taper
+    from solvers.greens.grid import RAIL_F_MAX, RAIL_F_TAPER, RAIL_LAGS, RAIL_NT, rail_taper
+    from pipeline.stages.greens import rail_greens
 
     grid = {"n_t": RAIL_NT, "n_lags": RAIL_LAGS, "f_max": RAIL_F_MAX, "f_taper": RAIL_F_TAPER}
     if np.any(np.abs(np.abs(np.asarray(pr["contact"]["y"], float)) - abs(y_r)) < 1e-12):

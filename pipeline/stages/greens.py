@@ -44,24 +44,15 @@ import time
 
 import numpy as np
 
-from solvers.constants import F_MAX_HZ
+from solvers.greens.grid import (KROPP_FIT_TOL, KROPP_TAPS, RAIL_F_MAX, RAIL_F_TAPER, RAIL_LAGS,  # noqa: F401
+                                 RAIL_NT, WHEEL_BAND_LIMIT, WHEEL_DECAY_DB, WHEEL_LAGS, rail_taper)
 
 from pipeline.store import artifacts, paths
 from pipeline.store.atomic import save_figure
 from pipeline.config.contact_plane import case_projection
+from pipeline.stages.rail_io import rail_point
 
 log = logging.getLogger("pipeline.greens")
-
-RAIL_F_MAX = F_MAX_HZ  # upper limit of the rail model (Hz)
-RAIL_F_TAPER = 9000.0  # the rail receptance is rolled off smoothly from RAIL_F_MAX to zero here (Hz)
-WHEEL_BAND_LIMIT = F_MAX_HZ  # the wheel kernel's DFT matches the receptance up to here (band-limited correction)
-WHEEL_DECAY_DB = 120.0  # decay of the wheel kernel by N_t/2 dt (choose_grid)
-KROPP_TAPS = 16  # samples refitted by the band-limited correction
-KROPP_FIT_TOL = 1e-3  # its pointwise tolerance relative to |G|
-WHEEL_LAGS = 1 << 15  # lags of the stored wheel kernel (1.2 s at 36 us)
-RAIL_NT = 8192  # Kropp grid of the rail: df = 1/(N_t dt) = 3.4 Hz at 36 us
-RAIL_LAGS = 4096  # moving-kernel length (0.147 s, 2 m at 50 km/h); its decay is checked
-
 
 def greens_inputs(case: str):
     from pipeline.config.case import resolve_case
@@ -83,33 +74,6 @@ def greens_inputs(case: str):
            "wheel_kernel": "modal+band-fit",
            "kropp_taps": KROPP_TAPS, "kropp_fit_tol": KROPP_FIT_TOL}
     return c, pw, pr, modes, (yw, yr, geo.contact.y_rail), cfg
-
-
-RAIL_POINT_TOL = 1e-3  # m: a contact point this close to a node of the rail file's contact.y list takes that node
-
-
-def rail_point(name: str, pr: dict, y_r: float, where: str = "") -> float:
-    """The rail model's loaded head point for the contact point y^R of the profiles: the node of the
-    rail file's ``contact.y`` list (mesh nodes of the rail section) on the same side of the head as
-    y^R (the vertical-lateral cross receptance changes sign with the side) when |y^R| is within
-    RAIL_POINT_TOL of one (the rail's receptances change little with the lateral position on the
-    head, thesis section 4.2.2; the numbers of before for the listed points), else y^R itself: any
-    point of the running surface has its receptances from the surface wave table
-    (``pipeline.caches.rail_surface_table``).  A point off the running surface (beyond the head's widest point)
-    is a one-line ConfigError (``where``: the case and offset it names)."""
-    from pipeline.config.loader import ConfigError
-
-    ys = np.unique(np.abs(np.asarray(pr["contact"]["y"], float)))
-    if len(ys):
-        i = int(np.argmin(np.abs(ys - abs(y_r))))
-        if abs(ys[i] - abs(y_r)) <= RAIL_POINT_TOL:
-            return float(np.copysign(ys[i], y_r))
-    half = 0.5 * pr["head"]["width"]
-    if abs(y_r) > half:
-        raise ConfigError(str(paths.rail_file(name)), detail=(
-            (f"{where}: " if where else "") + f"the contact point y^R = {1e3 * y_r:+.3f} mm of the profiles is "
-            f"off the rail head's running surface (|y| <= {1e3 * half:.1f} mm, head.width / 2)"))
-    return float(y_r)
 
 
 def wheel_greens(pw: dict, modes: dict, y_w: float, dt: float) -> dict:
@@ -153,20 +117,6 @@ def rail_greens(pr: dict, rail_hash: str, y_r: float, v: float, dt: float) -> tu
     if np.any(np.abs(np.abs(np.asarray(pr["contact"]["y"], float)) - abs(y_r)) < 1e-12):
         return rail_kernel(pr, rail_hash, y_r, v, dt, grid, rail_taper)  # a listed point: its own model
     return surface_kernel(pr, rail_hash, y_r, v, dt, grid, rail_taper)   # any other: the surface table
-
-
-def rail_taper(f) -> np.ndarray:
-    """1 up to RAIL_F_MAX, 0 from RAIL_F_TAPER, between them the C-infinity step
-    1 - e(u) / (e(u) + e(1 - u)), e(u) = exp(-1/u), u = (f - RAIL_F_MAX)/(RAIL_F_TAPER - RAIL_F_MAX):
-    all derivatives continuous, so the Hilbert transform of the tapered Re G (the
-    Im of Kropp's kernel) is smooth at RAIL_F_MAX (a hard cut puts a log singularity there)."""
-    u = np.clip((np.asarray(f, float) - RAIL_F_MAX) / (RAIL_F_TAPER - RAIL_F_MAX), 0.0, 1.0)
-    out = np.where(u <= 0.0, 1.0, 0.0)
-    mid = (u > 0.0) & (u < 1.0)
-    a = np.exp(-1.0 / u[mid])
-    b = np.exp(-1.0 / (1.0 - u[mid]))
-    out[mid] = b / (a + b)
-    return out
 
 
 def run_greens(case: str) -> dict:

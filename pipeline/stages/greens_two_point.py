@@ -53,7 +53,7 @@ def rail_blocks(pr: dict, y_a: float, y_b: float, v: float, dt: float) -> dict:
     from solvers.rail.moving_kernel import moving_green_waves
     from solvers.rail.transfer import block_wave_table
 
-    from pipeline.stages.greens import RAIL_F_TAPER, RAIL_LAGS, RAIL_NT, rail_taper
+    from solvers.greens.grid import RAIL_F_TAPER, RAIL_LAGS, RAIL_NT, rail_taper
     from pipeline.stages.rail_io import build_rail_model
     from pipeline.stages.rail import rail_mesh
 

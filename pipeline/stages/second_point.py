@@ -22,15 +22,13 @@ such node of the rail file's ``contact.y`` (greens.npz ``b_y_rail_model``).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from types import SimpleNamespace
 
 import numpy as np
 
+from geometry.turned import turned_geometry
 from pipeline.store import paths
 from pipeline.config.loader import ConfigError
 
-SAMPLE = 2.5e-5      # m: profile sampling of the turned profiles
-REACH = 0.012        # m: half-width of the turned profiles about the zone
 TRACK_FRAME_MAX = np.radians(15.0)   # angle = "none" with a second zone steeper than this: a one-line error
 
 
@@ -77,51 +75,6 @@ def second_zone(name: str, c: dict, geo) -> SecondZone:
     return SecondZone(y2, Y2, geo.rail_track.to_rail(Y2), delta, e, r_b, turned_geometry(geo, y2, Y2, delta, r_b))
 
 
-def turned_geometry(geo, y2: float, Y2: float, delta: float, r_b: float):
-    """The profiles about the zone (wheel y^W = y2 over track Y2) turned by -delta about the rail
-    point, as ``static_contact`` reads a ContactGeometry: r_wheel(u) = R - w_W(u),
-    z_rail(u) = w_R(u) in the turned lateral coordinate u (0 at the zone), R = r_b / cos(delta)."""
-    from scipy.interpolate import CubicSpline
-
-    c, s = np.cos(delta), np.sin(delta)
-    H2 = float(geo.rail_track(Y2))
-    Y = Y2 + np.arange(-REACH, REACH + SAMPLE / 2, SAMPLE)
-    shift = Y2 - y2
-    h_w = H2 - (np.asarray(geo.wheel(Y - shift), float) - float(geo.wheel(y2)))   # the wheel's surface height
-    h_r = np.asarray(geo.rail_track(Y), float)
-    R = r_b / c
-
-    def turned(h, extend=False):
-        ok = np.isfinite(h)
-        u = (Y[ok] - Y2) * c + (h[ok] - H2) * s
-        w = -(Y[ok] - Y2) * s + (h[ok] - H2) * c
-        i0 = int(np.argmin(np.abs(u)))
-        lo, hi = i0, i0                                   # the stretch where u increases through the zone
-        while lo > 0 and u[lo - 1] < u[lo]:
-            lo -= 1
-        while hi < len(u) - 1 and u[hi + 1] > u[hi]:
-            hi += 1
-        spl = CubicSpline(u[lo:hi + 1], w[lo:hi + 1])
-        a, b = u[lo], u[hi]
-        if not extend:
-            return lambda q: np.where((np.asarray(q) >= a) & (np.asarray(q) <= b), spl(np.clip(q, a, b)), np.nan)
-        # beyond the profile's ends: continued along its end curvature (a circle's Taylor polynomial)
-        ends = [(e, float(spl(e)), float(spl(e, 1)), float(spl(e, 2))) for e in (a, b)]
-
-        def f(q):
-            q = np.asarray(q, float)
-            out = spl(np.clip(q, a, b))
-            for e, w0, w1, w2, side in ((*ends[0], q < a), (*ends[1], q > b)):
-                t = q - e
-                out = np.where(side, w0 + w1 * t + 0.5 * w2 * t * t, out)
-            return out
-        return f
-
-    ww, wr = turned(h_w), turned(h_r, extend=True)   # the rail profile ends at the head's widest point
-    return SimpleNamespace(r_wheel=lambda u: R - ww(u), z_rail=wr,
-                           contact=SimpleNamespace(y_wheel=0.0, y_track=0.0))
-
-
 def second_contact_arrays(name: str, c: dict, pw: dict, geo, F_L: float, n_table: int = 41) -> dict:
     """The contact stage's arrays of the second patch (keys ``b_*``): its gap, NORM table over
     0 .. 2x the approach at which it alone would carry F_L (the first patch's static normal force:
@@ -129,7 +82,7 @@ def second_contact_arrays(name: str, c: dict, pw: dict, geo, F_L: float, n_table
     from solvers.contact.compliance import compliance_table
     from solvers.contact.norm import norm_table
 
-    from pipeline.stages.contact import DY, static_contact
+    from solvers.contact.static import DY, static_contact
     from pipeline.caches.friction_curves import case_friction, compute_curve, curve_arrays, entries_of
 
     z = second_zone(name, c, geo)

@@ -57,7 +57,7 @@ def run_simulate(case: str) -> dict:
     if c["contact"].get("points", 1) == 2:  # [contact] points = 2: the two-point loop (pipeline/stages/simulate_two_point.py)
         from pipeline.stages.simulate_two_point import simulate_two_point_case
 
-        return simulate_two_point_case(case, c, con, gr, cm, wheel, cfg)
+        return simulate_two_point_case(case, c, con, gr, cm, wheel, cfg, plot_forces)
     res = simulate(wheel, gr["rail_kernel"], cm, dt=c["time"]["dt"], v=c["kinematics"]["speed"],
                    gamma_y=c["kinematics"]["gamma_y"], gamma_x=c["kinematics"]["gamma_x"],
                    spin=c["kinematics"].get("spin", 0.0),

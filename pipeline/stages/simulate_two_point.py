@@ -67,12 +67,12 @@ def run_two_point(c: dict, con, gr, cm, wheel, store_every: int = 10):
     return res, arrays
 
 
-def simulate_two_point_case(case: str, c: dict, con, gr, cm, wheel, cfg: dict) -> dict:
-    """The simulate stage of a two-point case: run, plot the first point's forces, save, log."""
+def simulate_two_point_case(case: str, c: dict, con, gr, cm, wheel, cfg: dict, plot_forces) -> dict:
+    """The simulate stage of a two-point case: run, plot the first point's forces (``plot_forces``: the
+    simulate stage's, which a verdict without figures replaces), save, log."""
     import logging
 
     from pipeline.store import artifacts, paths
-    from pipeline.stages.simulate import plot_forces
 
     res, arrays = run_two_point(c, con, gr, cm, wheel)
     if "contact_angle_wheel" in gr:
@@ -98,14 +98,3 @@ def two_point_roots(c: dict, con, gr, wheel, cm) -> list:
                        gamma_y=c["kinematics"]["gamma_y"], gamma_x=c["kinematics"]["gamma_x"],
                        preload=c["loading"]["preload"])
     return wheel_roots(lm)
-
-
-def case_two_point_roots(case: str) -> list:
-    """``two_point_roots`` of a case from its artifacts (the stability stage's two-point screen)."""
-    from solvers.timeloop.interaction import contact_model
-
-    from pipeline.caches.friction_curves import case_friction
-    from pipeline.stages.simulate import case_arrays
-
-    c, _, con, gr, wheel = case_arrays(case)
-    return two_point_roots(c, con, gr, wheel, contact_model(con, case_friction(c, case)))

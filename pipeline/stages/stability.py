@@ -49,16 +49,14 @@ def case_linear_model(case: str, mu: float | None = None, gamma_y: float | None 
 
 
 def run_stability(case: str) -> dict:
-    from solvers.stability import screen
+    from solvers.stability.screen import screen
 
     from pipeline.stages.simulate import simulate_config
 
     t0 = time.perf_counter()
     c, lm, labels, f_open = case_linear_model(case)
     roots = screen(lm)
-    if c["contact"].get("points", 1) == 2:  # [contact] points = 2: the two-point screen (two_point_simulate.py)
-        from pipeline.stages.simulate_two_point import case_two_point_roots
-
+    if c["contact"].get("points", 1) == 2:  # [contact] points = 2: the two-point screen
         roots = case_two_point_roots(case)
     wall = time.perf_counter() - t0
     mode = np.array([r.mode for r in roots], np.int64)
@@ -86,3 +84,15 @@ def plot_screen(a: dict, path, case: str, c: dict) -> None:
     from postprocess.plots.stability import screen_figure
 
     save_figure(screen_figure(a, case, c), path, dpi=100)
+
+
+def case_two_point_roots(case: str) -> list:
+    """The two-point screen's wheel roots of a case from its artifacts (``simulate_two_point.two_point_roots``)."""
+    from solvers.timeloop.interaction import contact_model
+
+    from pipeline.caches.friction_curves import case_friction
+    from pipeline.stages.simulate import case_arrays
+    from pipeline.stages.simulate_two_point import two_point_roots
+
+    c, _, con, gr, wheel = case_arrays(case)
+    return two_point_roots(c, con, gr, wheel, contact_model(con, case_friction(c, case)))

@@ -1,11 +1,14 @@
 """The hash of the code an artifact's numbers depend on: the ``code`` entry of a cache key.
 
-``code_hash(patterns)`` hashes the files that the glob ``patterns`` (relative to the repository,
-each expanded in sorted order; a pattern that matches nothing adds nothing) name, each as its
-relative path followed by its bytes, so a changed file makes a new key and a stale cache is never
-read.  ``ignore_docs=True`` hashes a Python file's syntax tree without its docstrings instead of
-its bytes (``code_text``), so that editing documentation keeps the results (the study rows).
-Computed once per process for the same files (path, size, modification time).
+``code_key(entries)`` is the one way a cache names its code: ``entries`` are the functions whose
+results it keeps (``"package.module:function"``), and the files hashed are those the functions can
+reach through the imports (``pipeline.store.deps.stage_files``, the analysis that writes Make's
+dependencies), so no list of files is kept by hand and a module a computation starts to use is in its
+key from then on.  Each file counts as its relative path followed by its bytes, so a changed file
+makes a new key and a stale cache is never read.  ``ignore_docs=True`` hashes a Python file's syntax
+tree without its docstrings instead of its bytes (``code_text``), so that editing documentation keeps
+the results (the study rows).  Computed once per process for the same files (path, size,
+modification time).
 """
 from __future__ import annotations
 
@@ -13,6 +16,7 @@ import ast
 import functools
 import hashlib
 
+from pipeline.store import deps
 from pipeline.store.paths import ROOT
 
 
@@ -30,16 +34,26 @@ def code_text(path) -> bytes:
     return ast.dump(tree).encode()
 
 
-def code_hash(patterns, *, ignore_docs: bool = False) -> str:
-    """16 hex digits of the hash of the files ``patterns`` name (module notes)."""
-    files = [p for pattern in patterns for p in sorted(ROOT.glob(pattern))]
-    return _hash(tuple((p, p.stat().st_mtime_ns, p.stat().st_size) for p in files), ignore_docs)
+@functools.lru_cache(maxsize=None)
+def reached_files(entries: tuple[str, ...], root=ROOT) -> tuple[str, ...]:
+    """The repository files (relative paths, sorted) that the functions ``entries`` can reach."""
+    files = set()
+    for entry in entries:
+        module, _, function = entry.partition(":")
+        files.update(deps.stage_files(module, function, root))
+    return tuple(sorted(files))
 
 
-@functools.lru_cache(maxsize=32)
-def _hash(files: tuple, ignore_docs: bool) -> str:
+def code_key(*entries: str, ignore_docs: bool = False, root=ROOT) -> str:
+    """16 hex digits of the hash of the code the functions ``entries`` ("module:function") reach."""
+    files = [root / f for f in reached_files(tuple(sorted(entries)), root)]
+    return _hash(root, tuple((p, p.stat().st_mtime_ns, p.stat().st_size) for p in files), ignore_docs)
+
+
+@functools.lru_cache(maxsize=64)
+def _hash(root, files: tuple, ignore_docs: bool) -> str:
     h = hashlib.sha256()
     for p, _, _ in files:
-        h.update(p.relative_to(ROOT).as_posix().encode())
+        h.update(p.relative_to(root).as_posix().encode())
         h.update(code_text(p) if ignore_docs else p.read_bytes())
     return h.hexdigest()[:16]

@@ -9,7 +9,7 @@ import sys
 
 def check_study(name: str) -> str:
     """A one-line summary of a valid study; ConfigError otherwise."""
-    from pipeline.study.stage import load_study
+    from pipeline.study.definition import load_study
 
     spec, src = load_study(name)
     if spec["kind"] == "line":

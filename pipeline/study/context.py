@@ -14,20 +14,17 @@ from typing import Any
 import numpy as np
 
 from pipeline.store import artifacts, paths
-from pipeline.store.code_hash import code_hash as _code_hash
+from pipeline.store.code_hash import code_key
 from pipeline.config.loader import config_hash
 
-# the code a study row depends on (hashed into its inputs); missing files are skipped
-CODE = ["solvers/timeloop/interaction.py", "solvers/timeloop/*.py", "solvers/greens/kernels.py", "solvers/wheel/modal_filter.py",
-        "solvers/timeloop/partitioned.py", "solvers/study.py", "solvers/spectra.py", "solvers/spectra.py",
-        "pipeline/study/worker.py", "pipeline/study/tasks.py", "solvers/contact/*.py", "solvers/radiation/thompson_jones.py",
-        "solvers/radiation/surfaces.py", "solvers/radiation/force_power.py", "pipeline/stages/radiate.py",
-        "solvers/wheel/receptance.py", "solvers/constants.py"]
+# the functions that compute a study's rows: the code they reach is hashed into a row's inputs
+ROW_FUNCTIONS = tuple(f"pipeline.study.worker:{f}" for f in ("map_case", "damping_case", "mode_case", "creepage_case",
+                                                              "contact_case"))
 
 
 def code_hash() -> str:
     """Hash of the code a study row depends on (its syntax trees: documentation does not count)."""
-    return _code_hash(CODE, ignore_docs=True)
+    return code_key(*ROW_FUNCTIONS, ignore_docs=True)
 
 
 @dataclass(frozen=True)

@@ -26,13 +26,7 @@ from pipeline.study.runner import Task, pending, run_tasks
 log = logging.getLogger("pipeline.study")
 
 # the code a row depends on (its syntax trees): the curving, the verdict and every stage it runs
-CODE = ["pipeline/curve/curving.py", "pipeline/config/curve_schemas.py", "solvers/curving/*.py", "pipeline/curve/*.py",
-        "pipeline/study/line_worker.py", "pipeline/stages/contact.py", "pipeline/stages/greens.py",
-        "pipeline/stages/simulate.py", "pipeline/stages/radiate.py", "pipeline/stages/listen.py",
-        "pipeline/caches/rail_surface_table.py", "pipeline/caches/rail_kernel.py", "pipeline/caches/friction_curves.py", "pipeline/config/case.py",
-        "pipeline/config/case_profiles.py", "solvers/stability/screen.py", "solvers/stability/mitigation.py", "solvers/timeloop/interaction.py",
-        "solvers/timeloop/*.py", "solvers/contact/*.py", "solvers/wheel/receptance.py", "solvers/rail/moving_kernel.py",
-        "solvers/radiation/thompson_jones.py", "postprocess/listening/listener.py", "postprocess/exports.py", "solvers/constants.py"]
+ROW_FUNCTION = "pipeline.study.line_worker:line_case"
 
 ROW_COLUMNS = {"id": str, "chainage_m": float, "radius_m": float, "cant_mm": float, "length_m": float,
                "speed_kmh": float, "vehicle": str, "friction": str, "mu": float}
@@ -53,7 +47,7 @@ def selected(spec: dict, quick: bool) -> list[LineRow]:
 
 def inputs_hash(spec: dict, curve_text: str, vehicle: str) -> str:
     """What a row's result depends on: its curve file, the vehicle, wheel and rail files, the code."""
-    from pipeline.store.code_hash import code_hash
+    from pipeline.store.code_hash import code_key
     from pipeline.curve.curving import vehicle_file
 
     v = vehicle_file(vehicle)
@@ -62,7 +56,7 @@ def inputs_hash(spec: dict, curve_text: str, vehicle: str) -> str:
     wheel = tomllib.loads(v.read_text()).get("wheel", "")
     files = [v, paths.wheel_file(wheel), paths.rail_file(tomllib.loads(curve_text).get("rail", "bv50"))]
     return config_hash({"curve": curve_text, "files": [f.read_text() if f.exists() else "" for f in files],
-                        "code": code_hash(CODE, ignore_docs=True), "what_ifs": spec["what_ifs"],
+                        "code": code_key(ROW_FUNCTION, ignore_docs=True), "what_ifs": spec["what_ifs"],
                         "figures": spec["wheel_figures"]})
 
 

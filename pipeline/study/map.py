@@ -16,6 +16,7 @@ from pipeline.store import paths
 from pipeline.config.loader import config_hash
 from pipeline.study.results_table import ResultsTable
 from pipeline.study.runner import Task, pending, run_tasks
+from pipeline.study.definition import grid_of, load_study
 from pipeline.study.tasks import MapTask, Simulation
 
 log = logging.getLogger("pipeline.study")
@@ -26,20 +27,9 @@ COLUMNS = {"case": str, "dy_wr": float, "gamma_y": float, "mu": float, "L_F2": f
 MEASURES = ("L_F2", "f_dominant", "L_W", "f_sound")
 
 
-def grid_of(spec: dict, quick: bool) -> tuple[np.ndarray, np.ndarray]:
-    from solvers.study import grid
-
-    g = spec["grid"]
-    step = spec["quick"] if quick else g
-    return (grid(g["gamma_y_first"], g["gamma_y_last"], step["gamma_y_step"]),
-            grid(g["mu_first"], g["mu_last"], step["mu_step"]))
-
-
 def map_mus(study: str = "map", quick: bool = False) -> np.ndarray:
     """The friction coefficients of a map study's grid (``pipeline/studies/map.toml``: the one
     home of the map's mu grid)."""
-    from pipeline.study.stage import load_study
-
     return grid_of(load_study(study)[0], quick)[1]
 
 

@@ -73,8 +73,8 @@ def _wheel(lm):
 
 
 def run_stability_map(study: str, quick: bool = False) -> str:
-    from pipeline.study.map import grid_of
-    from pipeline.study.stage import load_study
+    from pipeline.study.definition import grid_of
+    from pipeline.study.definition import load_study
 
     spec, _ = load_study(study)
     gammas, mus = grid_of(spec, quick)

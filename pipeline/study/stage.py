@@ -22,12 +22,10 @@ import logging
 import os
 import threading
 import time
-import tomllib
 from pathlib import Path
 
 from pipeline.store import artifacts, paths
-from pipeline.config.loader import ConfigError, load
-from pipeline.study.schemas import COMMON, KINDS, SCHEMAS
+from pipeline.study.definition import load_study
 
 log = logging.getLogger("pipeline.study")
 
@@ -38,26 +36,6 @@ def _kind_module(kind: str):
     from pipeline.study import contact, damping, line, map
 
     return {"map": map, "damping": damping, "contact": contact, "line": line}[kind]
-
-
-def load_study(name: str) -> tuple[dict, str]:
-    """The validated study definition and its path."""
-    path = paths.study_file(name)
-    if not path.exists():
-        raise ConfigError(str(path), detail=f"no such study; available: {paths.available(paths.studies())}")
-    try:
-        kind = tomllib.loads(path.read_text()).get("kind")
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError):
-        kind = None                                  # load() reports the syntax error
-    schema = SCHEMAS.get(kind, COMMON) if isinstance(kind, str) else COMMON
-    spec = load(path, schema)                        # an unknown kind fails here, naming the key
-    if spec["kind"] not in KINDS:                    # pragma: no cover - the schema's choices catch it
-        raise ConfigError(str(path), [("kind", spec["kind"], f"one of {list(KINDS)}")])
-    for case in spec.get("cases", []):              # a line study names curves instead (pipeline/study/line.py)
-        if not paths.case_file(case).exists():
-            raise ConfigError(str(path), [("cases", case, f"a case in {paths.cases()}: "
-                                                          f"{paths.available(paths.cases())}")])
-    return spec, str(path)
 
 
 class LazyClient:

@@ -32,8 +32,8 @@ def case_models(study: str = "map"):
     """{case: (LinearModel, labels, contact artifact, case dict, y^W)} and the study grid."""
     from pipeline.store import artifacts, paths
     from pipeline.stages.stability import case_linear_model
-    from pipeline.study.map import grid_of
-    from pipeline.study.stage import load_study
+    from pipeline.study.definition import grid_of
+    from pipeline.study.definition import load_study
 
     spec, _ = load_study(study)
     gammas, mus = grid_of(spec, quick=False)

@@ -56,8 +56,8 @@ def calibrate(study: str = "map", lo: float = 1.0, hi: float = 100.0) -> dict:
     MU_QUIET on the study's creepage grid; the growth at MU_LOUD as the check."""
     from scipy.optimize import brentq
 
-    from pipeline.study.map import grid_of
-    from pipeline.study.stage import load_study
+    from pipeline.study.definition import grid_of
+    from pipeline.study.definition import load_study
 
     spec, _ = load_study(study)
     gammas, _ = grid_of(spec, quick=False)

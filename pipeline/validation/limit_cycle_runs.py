@@ -44,7 +44,7 @@ def out_dir() -> Path:
 
 
 def simulation():
-    from pipeline.study.stage import load_study
+    from pipeline.study.definition import load_study
     from pipeline.study.tasks import Simulation
 
     spec, _ = load_study("map")
@@ -75,7 +75,7 @@ def coupled_root(case: str, ctx, mu: float, gamma_y: float, f_lc: float) -> dict
     """The screen's root nearest the limit-cycle frequency (or its 1/2, 1/3), its free mode (f_r,
     zeta), and the detuning of f_lc from f_r (``postprocess.limit_cycle_measures.sdof_detuning``)."""
     from postprocess.limit_cycle_measures import sdof_detuning
-    from solvers.stability import screen
+    from solvers.stability.screen import screen
 
     from pipeline.stages.stability import case_linear_model
 

@@ -23,6 +23,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from solvers.curving.roots import newton, safe_residual
+
 PLATEAU = 1.0   # width (in w, mm) of a two-point tread contact's load transfer
 
 
@@ -81,10 +83,8 @@ class Complementarity:
         return w
 
     def residual(self, w):
-        from solvers.curving.solve import _safe
-
         z, states = self.split(w)
-        return _safe(self.fun_of, states, self.y_f, *self.args)(z)
+        return safe_residual(self.fun_of, states, self.y_f, *self.args)(z)
 
 
 def semismooth(fun_of, starts, y_f, prof, veh, trk, law, n_ws):
@@ -92,8 +92,6 @@ def semismooth(fun_of, starts, y_f, prof, veh, trk, law, n_ws):
     starting points): [(z, r, flanges, keep, 0), ...], each accepted (residual <= 1e-8 of Q0); after the
     first, one more start is tried, so that a second equilibrium (another branch) can be reported."""
     from scipy.optimize import root
-
-    from solvers.curving.solve import _newton
 
     cp = Complementarity(fun_of, n_ws, y_f, prof, veh, trk, law)
     fun = cp.residual
@@ -110,7 +108,7 @@ def semismooth(fun_of, starts, y_f, prof, veh, trk, law, n_ws):
                 best = sol.x
             if np.max(np.abs(fun(best))) < 1e-6:
                 break
-        w, r = _newton(fun, best)
+        w, r = newton(fun, best)
         if not np.max(np.abs(r)) <= 1e-8:
             continue
         z, fl = cp.split(w)

@@ -22,9 +22,10 @@ import numpy as np
 
 from solvers.curving.creep import CreepLaw
 from solvers.curving.model import Profiles, Track, Vehicle, box_loads, wheel_contacts, wheelset_residual
+from solvers.curving.roots import TOL, newton, safe_residual
+from solvers.curving.semismooth import semismooth
 from solvers.curving.wheelrail import flange_shift
 
-TOL = 1e-10          # residuals / (Q0, Q0 * 1 m) required
 MAX_ACTIVE = 8       # active-set passes
 
 
@@ -138,28 +139,6 @@ def wheelset_only_residual(z, flanges, y_f, prof, veh, trk, law, keep=None):
     return _scale(ws.residual, veh.wheel_load)
 
 
-def _newton(fun, z, tol=TOL, max_iter=40):
-    """Polish a root with Newton steps (forward-difference Jacobian, step 1e-7 in scaled units)."""
-    r = fun(z)
-    for _ in range(max_iter):
-        if np.max(np.abs(r)) < tol:
-            break
-        J = np.empty((len(r), len(z)))
-        for k in range(len(z)):
-            dz = np.zeros_like(z)
-            dz[k] = 1e-7 * max(1.0, abs(z[k]))
-            J[:, k] = (fun(z + dz) - r) / dz[k]
-        step = np.linalg.lstsq(J, -r, rcond=None)[0]
-        t = 1.0
-        while t > 1e-3:
-            r_new = fun(z + t * step)
-            if np.max(np.abs(r_new)) < np.max(np.abs(r)):
-                break
-            t *= 0.5
-        z, r = z + t * step, r_new
-    return z, r
-
-
 def _start(veh, trk, lam0, n_ws, y_f):
     y0 = 1e3 * min(veh.r0 * veh.rolling_circle / (lam0 * trk.radius), 0.8 * y_f, 0.02)
     per = [y0, 0.0, 0.0, 1.0, 1.0]
@@ -181,18 +160,6 @@ def _starts(veh, trk, lam0, n_ws, y_f):
                         0.0, 1.0, 1.0, 0.0, 1e3 * pb]), [1, -1]
 
 
-def _safe(fun_of, flanges, y_f, prof, veh, trk, law):
-    """The residual function of one flange set; a trial point off the profiles gives a large
-    residual (so that the iteration backs off) instead of an exception."""
-    def fun(v):
-        try:
-            r = fun_of(v, flanges, y_f, prof, veh, trk, law)
-        except (ValueError, ZeroDivisionError, OverflowError):
-            return np.full(len(v), 1e3)
-        return np.where(np.isfinite(r), r, 1e3)
-    return fun
-
-
 def _equilibrium(fun_of, z, flanges, y_f, prof, veh, trk, law):
     """Equilibrium for a given start: the flange's active set iterated to a stable set.
     Returns (z, residual, flanges, [states, y_b, psi_b, frame residual], passes)."""
@@ -200,9 +167,9 @@ def _equilibrium(fun_of, z, flanges, y_f, prof, veh, trk, law):
 
     seen = {tuple(flanges)}
     for passes in range(1, MAX_ACTIVE + 1):
-        fun = _safe(fun_of, flanges, y_f, prof, veh, trk, law)
+        fun = safe_residual(fun_of, flanges, y_f, prof, veh, trk, law)
         sol = root(fun, z, method="hybr", options={"xtol": 1e-13, "maxfev": 4000, "factor": 0.5})
-        z, r = _newton(fun, sol.x)
+        z, r = newton(fun, sol.x)
         keep = []
         try:
             fun_of(z, flanges, y_f, prof, veh, trk, law, keep)
@@ -281,13 +248,11 @@ def solve(prof: Profiles, veh: Vehicle, trk: Track, law: CreepLaw, bogie: bool =
         if keep is not None and np.max(np.abs(r)) <= 1e-8:
             break
         if np.all(np.isfinite(z)):
-            stalled.append((float(np.max(np.abs(_safe(fun_of, flanges, y_f, prof, veh, trk, law)(z)))), z.copy(),
+            stalled.append((float(np.max(np.abs(safe_residual(fun_of, flanges, y_f, prof, veh, trk, law)(z)))), z.copy(),
                             list(flanges)))
     notes = []
     if keep is None or np.max(np.abs(r)) > 1e-8:
         stalled.sort(key=lambda s: s[0])
-        from solvers.curving.semismooth import semismooth
-
         found = semismooth(fun_of, [s[1:] for s in stalled] + tried, y_f, prof, veh, trk, law, n_ws)
         if found:
             z, r, flanges, keep, passes = found[0]

@@ -46,7 +46,9 @@ def test_curve_at_033_between_neighbours_and_kalker_slope():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from pipeline.stages.contact import contact_setup, static_contact
+    from solvers.contact.static import static_contact
+
+    from pipeline.stages.contact import contact_setup
     from solvers.contact.surfaces import patch_metrics
     from tests.contact.cases import DX, E, NU, V, hertz_case
     from tests.contact.kalker_table import creep_coefficient

@@ -31,7 +31,7 @@ NEEDS = [BUILD / "rails" / "bv50" / "section.msh", BUILD / "cases" / "default" /
 
 
 def kernel_section() -> tuple[str, np.ndarray]:
-    from pipeline.stages.greens import RAIL_F_TAPER, RAIL_LAGS, RAIL_NT, rail_taper
+    from solvers.greens.grid import RAIL_F_TAPER, RAIL_LAGS, RAIL_NT, rail_taper
     from pipeline.caches.rail_kernel import table_transfer, wave_table_threads
     from pipeline.stages.rail import load_rail_params
     from solvers.greens.kernels import frequency_grid, moving_green

@@ -474,7 +474,7 @@ and it is G_mov, not the fixed-point receptance, that is reproduced.
 def rail_section() -> str:
     """The BV50 rail kernel of the default case (build/cases/default/greens.npz): causality of the
     receptance, pointwise spectrum error, the hard cut at 6.5 kHz against the taper."""
-    from pipeline.stages.greens import RAIL_F_MAX, RAIL_F_TAPER, rail_taper
+    from solvers.greens.grid import RAIL_F_MAX, RAIL_F_TAPER, rail_taper
 
     if not GREENS.exists():
         return "### The BV50 rail kernel\n\n(build/cases/default/greens.npz missing: run `make greens`.)\n"

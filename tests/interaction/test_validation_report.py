@@ -42,7 +42,7 @@ def _plt():
 def build_contact(dy_mm: int, dt: float, mu: float = MU):
     """The contact of a nominal position at the grid dx = v dt: the contact stage's computation
     (pipeline/contact_stage.build_contact) for one friction coefficient."""
-    from pipeline.stages.contact import DY, static_contact
+    from solvers.contact.static import DY, static_contact
     from pipeline.config.case_profiles import case_contact, contact_geometry
     from solvers.contact.compliance import compliance_table
     from solvers.contact.friction import rf_curve

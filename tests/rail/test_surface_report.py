@@ -32,7 +32,7 @@ DT, V = 36e-6, 50 / 3.6
 
 
 def _grid():
-    from pipeline.stages.greens import RAIL_F_MAX, RAIL_F_TAPER, RAIL_LAGS, RAIL_NT
+    from solvers.greens.grid import RAIL_F_MAX, RAIL_F_TAPER, RAIL_LAGS, RAIL_NT
 
     return {"n_t": RAIL_NT, "n_lags": RAIL_LAGS, "f_max": RAIL_F_MAX, "f_taper": RAIL_F_TAPER}
 
@@ -40,7 +40,7 @@ def _grid():
 def default_point():
     """(table rows, surface kernel arrays, stored greens arrays, errors)."""
     from pipeline.config.loader import config_hash
-    from pipeline.stages.greens import rail_taper
+    from solvers.greens.grid import rail_taper
     from pipeline.stages.rail import load_rail_params
     from pipeline.caches.rail_surface_table import kernel_from_waves, point_waves
     from solvers.greens.kernels import frequency_grid

@@ -29,7 +29,7 @@ def _need(case):
 
 
 def _screen(lm, labels):
-    from solvers.stability import screen
+    from solvers.stability.screen import screen
 
     roots = screen(lm)
     out = {}

@@ -43,7 +43,7 @@ def _run(case):
     from pipeline.store import paths
     from pipeline.stages.stability import case_linear_model
     from solvers.timeloop.interaction import WheelModes, contact_model, simulate
-    from solvers.stability import screen
+    from solvers.stability.screen import screen
     from solvers.study import nearest_mode
 
     c, lm, labels, f_open = case_linear_model(case)

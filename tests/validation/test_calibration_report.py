@@ -55,8 +55,8 @@ def test_calibration_report():
     from pipeline.store import artifacts, paths
     from pipeline.validation.calibrate_suspension import CASE, MU_LOUD, MU_QUIET, lf_growth
     from pipeline.validation.calibrate_wheel import TARGETS, tread_ratio
-    from pipeline.study.map import grid_of
-    from pipeline.study.stage import load_study
+    from pipeline.study.definition import grid_of
+    from pipeline.study.definition import load_study
     from pipeline.stages.wheel import load_wheel, reference_rows
     from postprocess.modes.reference import match_modes, summary
     from solvers.constants import THESIS_CONTACT_POINTS_FIELD
