@@ -27,6 +27,7 @@ from pipeline.store import artifacts, paths
 log = logging.getLogger("pipeline.caches.friction_curves")
 
 CURVE_KIND = "friction-curve"
+CURVE_FUNCTIONS = ("pipeline.caches.friction_curves:compute_curve",)  # the code they reach is in the key
 
 
 @dataclass(frozen=True)
@@ -179,7 +180,7 @@ def code_hash() -> str:
     """The key of the code a cached curve depends on: what ``compute_curve`` reaches."""
     from pipeline.store.code_hash import code_key
 
-    return code_key("pipeline.caches.friction_curves:compute_curve")
+    return code_key(*CURVE_FUNCTIONS)
 
 
 def contact_key(p3, dx: float, dy: float, v: float, E: float, nu: float) -> str:

@@ -36,6 +36,7 @@ from pipeline.store.code_hash import code_key
 log = logging.getLogger("pipeline.greens")
 
 KIND = "rail-moving-kernel"
+KERNEL_FUNCTIONS = ("pipeline.caches.rail_kernel:build_kernel",)  # the code they reach is in the key
 
 
 def kernel_config(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, grid: dict) -> dict:
@@ -43,7 +44,7 @@ def kernel_config(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, gri
     f_max, f_taper (pipeline.stages.greens's RAIL_* settings)."""
     mesh = paths.rail_dir(pr["name"]) / "section.msh"
     return {"rail": rail_hash, "mesh": hashlib.sha256(mesh.read_bytes()).hexdigest()[:16],
-            "code": code_key("pipeline.caches.rail_kernel:build_kernel"), "y_r_abs": round(abs(float(y_r)), 9), "v": float(v), "dt": float(dt),
+            "code": code_key(*KERNEL_FUNCTIONS), "y_r_abs": round(abs(float(y_r)), 9), "v": float(v), "dt": float(dt),
             **{k: (int(x) if k.startswith("n_") else float(x)) for k, x in grid.items()}}
 
 

@@ -17,9 +17,11 @@ from pipeline.store import artifacts, paths
 from pipeline.store.code_hash import code_key
 from pipeline.config.loader import config_hash
 
-# the functions that compute a study's rows: the code they reach is hashed into a row's inputs
-ROW_FUNCTIONS = tuple(f"pipeline.study.worker:{f}" for f in ("map_case", "damping_case", "mode_case", "creepage_case",
-                                                              "contact_case"))
+# the functions that compute a study's rows, and the context they run in (its objects' methods run in the
+# rows: the case's friction law, for one): the code they reach is hashed into a row's inputs
+ROW_FUNCTIONS = ("pipeline.study.context:load_context",
+                 *(f"pipeline.study.worker:{f}" for f in ("map_case", "damping_case", "mode_case", "creepage_case",
+                                                          "contact_case")))
 
 
 def code_hash() -> str:

@@ -26,7 +26,7 @@ from pipeline.study.runner import Task, pending, run_tasks
 log = logging.getLogger("pipeline.study")
 
 # the code a row depends on (its syntax trees): the curving, the verdict and every stage it runs
-ROW_FUNCTION = "pipeline.study.line_worker:line_case"
+ROW_FUNCTIONS = ("pipeline.study.line_worker:line_case",)
 
 ROW_COLUMNS = {"id": str, "chainage_m": float, "radius_m": float, "cant_mm": float, "length_m": float,
                "speed_kmh": float, "vehicle": str, "friction": str, "mu": float}
@@ -56,7 +56,7 @@ def inputs_hash(spec: dict, curve_text: str, vehicle: str) -> str:
     wheel = tomllib.loads(v.read_text()).get("wheel", "")
     files = [v, paths.wheel_file(wheel), paths.rail_file(tomllib.loads(curve_text).get("rail", "bv50"))]
     return config_hash({"curve": curve_text, "files": [f.read_text() if f.exists() else "" for f in files],
-                        "code": code_key(ROW_FUNCTION, ignore_docs=True), "what_ifs": spec["what_ifs"],
+                        "code": code_key(*ROW_FUNCTIONS, ignore_docs=True), "what_ifs": spec["what_ifs"],
                         "figures": spec["wheel_figures"]})
 
 

@@ -1,0 +1,1 @@
+"""Tests of pipeline/store: where results live, how their keys are derived."""
