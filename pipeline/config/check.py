@@ -62,7 +62,7 @@ def run_check(case: str, wheel: str | None, rail: str | None) -> list[str]:
     Raises ConfigError (one line) at the first problem."""
     from pipeline.config.loader import ConfigError, load
     from pipeline.caches.friction_curves import case_friction
-    from pipeline.stages.rail_io import rail_point
+    from pipeline.config.rail_contact import rail_point
     from pipeline.config.case_profiles import contact_geometry
     from pipeline.stages.rail import load_rail_params
     from pipeline.config.input_schemas import CASE

@@ -80,7 +80,7 @@ def screen_context(case: str):
     """The ``pipeline.study.context.CaseContext`` of a case from arrays computed here (module notes)."""
     from pipeline.config.case import resolve_case
     from pipeline.stages.contact import build_contact
-    from pipeline.stages.rail_io import rail_point
+    from pipeline.config.rail_contact import rail_point
     from pipeline.curve.rail_point import rail_arrays
     from pipeline.study.context import CaseContext
 

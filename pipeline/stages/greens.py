@@ -50,7 +50,7 @@ from solvers.greens.grid import (KROPP_FIT_TOL, KROPP_TAPS, RAIL_F_MAX, RAIL_F_T
 from pipeline.store import artifacts, paths
 from pipeline.store.atomic import save_figure
 from pipeline.config.contact_plane import case_projection
-from pipeline.stages.rail_io import rail_point
+from pipeline.config.rail_contact import rail_point
 
 log = logging.getLogger("pipeline.greens")
 
