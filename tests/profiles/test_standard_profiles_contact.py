@@ -74,3 +74,22 @@ def test_centred_contact_agrees_with_contacts_profiles(pairs):
     assert cs["y_wheel"] == pytest.approx(cc["y_wheel"], abs=0.5)
     assert cs["y_rail"] == pytest.approx(cc["y_rail"], abs=0.5)
     assert 0.0 < cc["y_wheel"] < 6.0 and abs(cc["angle"]) < 3.0
+
+
+@pytest.mark.parametrize("inclination", [1 / 40, 1 / 30, 1 / 20, 1 / 15])
+def test_turned_60e1_gauge_face_up_to_and_past_its_side_taper(pairs, inclination):
+    """Turned by 1:20 the 1:20 head side is vertical, steeper it overhangs: the
+    track-frame rail keeps its single-valued part (no spline through a vertical
+    or overhanging side, which swung 1 m below the head), stays within the turned
+    table's heights, and puts the gauge face where CONTACT's head has it (0.01 mm)."""
+    from geometry.contact_point import TrackRail
+    from pipeline.curving import gauge_face
+
+    (_, rail), (_, crail) = pairs
+    track = TrackRail(rail, inclination)
+    a = np.arctan(inclination)
+    zt = rail.y * np.sin(a) + rail.z * np.cos(a)
+    z = track(np.linspace(track.y[0], track.y[-1], 40001))
+    assert np.all(np.diff(track.y) > 0)
+    assert zt.min() - 1e-7 <= np.nanmin(z) and np.nanmax(z) <= zt.max() + 1e-7
+    assert gauge_face(track) == pytest.approx(gauge_face(TrackRail(crail, inclination)), abs=1e-5)
