@@ -41,6 +41,7 @@ FLANGE_ANGLE_DEG = 45.0
 FLANGE_HEIGHT = 0.010  # m above the rolling circle: the flange (flange thickness is measured at this height)
 SECOND_WINDOW = 0.25e-3  # m: separations looked at for a second contact zone (a few static approaches)
 RIDGE = 1e-5  # m: a second zone is a local minimum behind a ridge at least this high
+OVERHANG_TOL = 1e-6  # m: a turned rail point must lie this far left of the rest (single-valued z_T(Y))
 
 
 class FlangeContact(ValueError):
@@ -78,7 +79,11 @@ class TrackRail:
         self.rail, self.alpha = rail, float(np.arctan(inclination))
         ca, sa = np.cos(self.alpha), np.sin(self.alpha)
         y, z = rail.y, rail.z
-        self._Y, self._Z = y * ca - z * sa, y * sa + z * ca
+        Y, Z = y * ca - z * sa, y * sa + z * ca
+        # a head side turned to 90 deg or more (a 1:20 side at 1:20 or more) overhangs: keep the single-valued
+        # part, the points at least OVERHANG_TOL left of everything after them
+        keep = Y < np.r_[np.minimum.accumulate(Y[::-1])[::-1][1:], np.inf] - OVERHANG_TOL
+        self._Y, self._Z = Y[keep], Z[keep]
         self._spl = make_interp_spline(self._Y, self._Z, k=3) if self.alpha else None
         self.y = self._Y
 

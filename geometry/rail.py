@@ -13,8 +13,8 @@ The parameter file (``geometry/rails/<name>.toml``) gives the published
 nominal dimensions (EN 13674-1 style: rail height, head width, head depth E,
 foot depth F, web thickness, foot width, foot edge thickness) and the head
 running profile (crown radius R1 over |y| <= crown_half_width, shoulder
-radius R2, gauge-corner radius R3, tangent to each other and to the vertical
-head side).  Fillets and slopes not printed in the published tables are
+radius R2, gauge-corner radius R3, tangent to each other and to the head
+side, vertical or widening downward at ``side_taper``).  Fillets and slopes not printed in the published tables are
 parameters too; they were chosen so that the section properties (area, mass,
 second moments) match the published values (tests/rail/test_section.py).
 
@@ -55,9 +55,13 @@ def _require(cond: bool, key: str, value, allowed: str) -> None:
 def crown_arcs(p: dict) -> dict:
     """Centres, radii and angular ranges of the three tangent head arcs.
 
-    Angles are measured from the vertical (theta = 0 at the crown top,
-    theta = pi/2 where the gauge-corner arc becomes the vertical head side);
-    a point of arc j is c_j + R_j (sin theta, cos theta).
+    Angles are measured from the vertical (theta = 0 at the crown top); a
+    point of arc j is c_j + R_j (sin theta, cos theta).  The corner arc ends
+    at theta = pi/2 - atan(side_taper), tangent to the head side, which
+    widens downward at the taper (1:20 on 60E1) and is vertical for a zero
+    taper; ``head.width`` is the width at that tangent point (EN 13674-1
+    drawing convention, as in the 60E1/UIC60 profile file CONTACT ships,
+    docs/validation/15_profiles.md).
     """
     H = p["section"]["height"]
     hd = p["head"]
@@ -69,7 +73,8 @@ def crown_arcs(p: dict) -> dict:
     _require(0 < y1 < min(R1, half - R3), "head.crown_half_width", y1,
              f"0 < crown_half_width < min(crown_radius, head.width/2 - corner_radius) = {min(R1, half - R3):.4g}")
     th1 = np.arcsin(y1 / R1)
-    s2 = (half - R3 - (R1 - R2) * np.sin(th1)) / (R2 - R3)
+    alpha = np.arctan(hd.get("side_taper", 0.0))
+    s2 = (half - R3 * np.cos(alpha) - (R1 - R2) * np.sin(th1)) / (R2 - R3)
     _require(np.sin(th1) < s2 < 1.0, "head.width", hd["width"],
              "a head width that the crown, shoulder and corner arcs can span tangentially "
              f"(shoulder end sin(theta) = {s2:.3f} must lie between {np.sin(th1):.3f} and 1)")
@@ -77,12 +82,11 @@ def crown_arcs(p: dict) -> dict:
     c1 = np.array([0.0, H - R1])
     c2 = c1 + (R1 - R2) * np.array([np.sin(th1), np.cos(th1)])
     c3 = c2 + (R2 - R3) * np.array([np.sin(th2), np.cos(th2)])
-    alpha = np.arctan(hd.get("side_taper", 0.0))
-    th3 = np.pi / 2 + alpha  # the corner arc ends tangent to the tapered head side
+    th3 = np.pi / 2 - alpha  # the corner arc ends tangent to the head side, which widens downward
     side_top = c3 + R3 * np.array([np.sin(th3), np.cos(th3)])
     return {"c": [c1, c2, c3], "R": [R1, R2, R3], "theta": [0.0, th1, th2, np.pi / 2, th3],
             "y_breaks": [0.0, y1, c2[0] + R2 * np.sin(th2), half], "side_top": side_top,
-            "side_top_z": float(side_top[1]), "side_dir": np.array([-np.sin(alpha), -np.cos(alpha)])}
+            "side_top_z": float(side_top[1]), "side_dir": np.array([np.sin(alpha), -np.cos(alpha)])}
 
 
 def head_profile(p: dict, y) -> np.ndarray:
@@ -218,7 +222,8 @@ def running_surface(p: dict, contact_y=(), n_crown: int = 5, n_shoulder: int = 7
     pts = np.column_stack([ys, head_profile(p, ys)])
     c3, R3 = a["c"][2], a["R"][2]
     th = np.linspace(a["theta"][2], a["theta"][4], n_corner)[1:]
-    th = np.unique(np.concatenate([th, [np.pi / 2]]))  # the widest point of the head is a vertex
+    th = np.unique(np.concatenate([th, [np.pi / 2]]))  # the arc's outermost point is a vertex
+    th = th[th <= a["theta"][4]]
     corner = np.column_stack([c3[0] + R3 * np.sin(th), c3[1] + R3 * np.cos(th)])
     return np.vstack([pts, corner])
 

@@ -9,7 +9,8 @@ rail z = height above the new crown top; metres unless a name says _mm).
 * Rail heads from their arc radii (EN 13674-1 style: crown R1, shoulder R2,
   gauge corner R3, tangent to each other and to the head side), through the
   rail parameter files (``geometry.rail.crown_arcs``): the same head as the
-  rail's FE section.
+  rail's FE section.  60E1 checked against the UIC60 file CONTACT ships
+  (docs/validation/15_profiles.md; S1002 likewise).
 * The parametric C20 running surface of a wheel parameter file (cone +
   worn flange, ``geometry.wheel.tread_profile``).
 
@@ -92,10 +93,22 @@ def rail_head_curve(p: dict, ds: float = 5e-5, side_depth: float = 0.016) -> dic
     return {"s": s, "y": y, "z": z, "n": n / np.linalg.norm(n, axis=1)[:, None]}
 
 
-def rail_head_points(p: dict, max_angle_deg: float = 75.0) -> tuple[np.ndarray, np.ndarray]:
-    """(y, z) in m of the head's running profile where its slope is below
-    ``max_angle_deg`` (the part a wheel can run on, single-valued in y)."""
-    c = rail_head_curve(p)
+TABLE_DEPTH = 0.022  # m below the crown top a tapered head's table reaches: past the gauge point (14 mm)
+
+
+def rail_head_points(p: dict, max_angle_deg: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """(y, z) in m of the head's running profile, single-valued in y.
+
+    A head whose sides widen downward (``head.side_taper`` > 0, 1:20 on
+    60E1) is single-valued down its sides: it is given down to TABLE_DEPTH
+    below the crown top, so that the gauge point 14 mm below it (EN 13848-1,
+    ``pipeline.curving.gauge_face``) lies on it.  A vertical side is not:
+    there the profile stops where its slope reaches 75 deg.  An explicit
+    ``max_angle_deg`` cuts both at that slope."""
+    tapered = p["head"].get("side_taper", 0.0) > 0.0
+    c = rail_head_curve(p, side_depth=TABLE_DEPTH) if tapered else rail_head_curve(p)
+    if max_angle_deg is None:
+        max_angle_deg = 90.0 if tapered else 75.0
     keep = np.abs(np.degrees(np.arctan2(c["n"][:, 0], c["n"][:, 1]))) <= max_angle_deg
     return c["y"][keep], c["z"][keep]
 

@@ -1,5 +1,5 @@
 """Write the standard profiles and calibrate the worn C20/BV50 pair
-(``make calibrate``; ``python -m pipeline.validation.calibrate_profiles``).
+(``make calibrate``; ``python -m pipeline.validation.calibrate_profiles``; ``--standard``: only step 1).
 
 1. Standard (new) profiles, generated from their published definitions:
    ``s1002.csv`` (EN 13715), ``c20_new.csv`` (the C20 wheel file's cone +
@@ -33,9 +33,24 @@ def _resample(y, z, step=STEP):
     return t, np.interp(t, y, z)
 
 
+def _resample_rail(y, z, step=STEP, steep_deg=75.0):
+    """A rail table: every ``step`` in y where the head is flatter than
+    ``steep_deg`` (``_resample``, unchanged for a head cut there), every
+    ``step`` of arc length down the steeper gauge and field faces."""
+    dy, dz = np.diff(y), np.diff(z)
+    steep = np.abs(dz) > np.tan(np.radians(steep_deg)) * dy
+    if not steep.any():
+        return _resample(y, z, step)
+    u = np.r_[0.0, np.cumsum(np.where(steep, np.hypot(dy, dz), dy))]  # y on the flat part, arc length on the faces
+    t = np.r_[np.arange(0.0, u[-1], step), u[-1]]
+    if t[-1] - t[-2] < 0.2 * step:
+        t = np.r_[t[:-2], u[-1]]
+    return np.interp(t, u, y), np.interp(t, u, z)
+
+
 def write_standard(pw: dict, rails: dict) -> list:
     """The new-profile files; returns their paths."""
-    from geometry.standard_profiles import rail_head_points, s1002_points, wheel_tread_points
+    from geometry.standard_profiles import TABLE_DEPTH, rail_head_points, s1002_points, wheel_tread_points
 
     from pipeline.config.case_profiles import write_profile
 
@@ -53,8 +68,10 @@ def write_standard(pw: dict, rails: dict) -> list:
         out.append(write_profile(f"{name}_new", {
             "kind": "rail", "source": f"EN 13674-1 head arcs R{1e3 * hd['crown_radius']:.0f}/R"
             f"{1e3 * hd['shoulder_radius']:.0f}/R{1e3 * hd['corner_radius']:.0f}, width {1e3 * hd['width']:.0f} mm "
-            f"(geometry/rails/{name}.toml; see its source caveat)", "noise_mm": 0,
-            "generated_by": "pipeline/validation/calibrate_profiles.py"}, *_resample(y, z)))
+            + (f"at the R{1e3 * hd['corner_radius']:.0f} tangent, head sides 1:{1 / hd['side_taper']:.0f} down to "
+               f"{1e3 * TABLE_DEPTH:.0f} mm below the crown " if hd.get("side_taper", 0.0) > 0 else "")
+            + f"(geometry/rails/{name}.toml; see its source caveat)", "noise_mm": 0,
+            "generated_by": "pipeline/validation/calibrate_profiles.py"}, *_resample_rail(y, z)))
     return out
 
 
@@ -105,5 +122,13 @@ def calibrate(seed: int = 1) -> dict:
 
 
 if __name__ == "__main__":
+    import sys
+
     logging.basicConfig(level=logging.INFO, format="%(levelname)s %(name)s: %(message)s")
-    calibrate()
+    if "--standard" in sys.argv[1:]:  # only the new-profile files (no wear fit)
+        from .rail_stage import load_rail_params
+        from .wheel_stage import load_wheel
+
+        write_standard(load_wheel(WHEEL)[0], {r: load_rail_params(r)[0] for r in (RAIL, "60e1")})
+    else:
+        calibrate()
