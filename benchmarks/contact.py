@@ -51,7 +51,7 @@ def _gap(nx, ny, dx, dy=None):
 
 def hertz_box(m, scale=1.1):
     """NORM pressures on an m x m grid over `scale` times the Hertz ellipse (CONTACT's box)."""
-    from tests.analytic.hertz import hertz
+    from pipeline.validation.references.hertz import hertz
 
     H = hertz(A, B, LOAD)
     dx, dy = 2 * scale * H.a / m, 2 * scale * H.b / m
@@ -113,13 +113,13 @@ def best_of(run, repeats=3):
 
 
 def _dense(*args, **kw):
-    """tests/contact/tang_dense.tang_dense without scipy's ill-conditioning warnings (its Newton
+    """pipeline.validation.references.tang_dense.tang_dense without scipy's ill-conditioning warnings (its Newton
     matrices near full slip)."""
     import warnings
 
     from scipy.linalg import LinAlgWarning
 
-    from tests.contact.tang_dense import tang_dense
+    from pipeline.validation.references.tang_dense import tang_dense
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", LinAlgWarning)
@@ -127,7 +127,7 @@ def _dense(*args, **kw):
 
 
 def dense_steps(p3, n=10, stride=12, start=100, tol=TOL):
-    """The former dense solver (tests/contact/tang_dense.py: the same equations, the Newton systems
+    """The former dense solver (pipeline/validation/references/tang_dense.py: the same equations, the Newton systems
     by dense LU, cold start) on n steps of the harmonic-creepage run, every `stride`-th step over
     about one period of the creepage, each from the fast solver's previous state: (wall per step,
     max |dF| / |F|, max |dp| / max mu p3, stick elements seen) of the fast solver at tol against
@@ -294,7 +294,7 @@ NORM's cold solve on 32 x 32 (first row of the last table; NORM is unchanged by 
 2026-11-22 run of this suite.
 
 TANG (issue 17; the last column is the target, CONTACT's speed on a machine of this kind; "the former dense
-solver" is tests/contact/tang_dense.py, the algorithm this tree had before issue 17 kept as the test oracle
+solver" is pipeline/validation/references/tang_dense.py, the algorithm this tree had before issue 17 kept as the test oracle
 (tolerance 1e-12, cold start per solve; warm-started, the former solver took 20-22 ms per transient step and
 ~4.7 s per 41 x 41 creepage, issue 17), timed in the same run):
 

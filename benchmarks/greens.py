@@ -4,8 +4,8 @@
 
 Wall-clock medians after warm-up (numba compiled), one process, dt = 36 us.  The
 C20 modal data come from build/wheels/c20/modes.npz when it exists (else the
-synthetic C20 modal set of tests/greens); the rail kernel from the analytic beam
-on a damped foundation of tests/greens (the rail stage will supply the
+synthetic C20 modal set of pipeline/validation/references/greens.py); the rail kernel from the analytic beam
+on a damped foundation of pipeline/validation/references/greens.py (the rail stage will supply the
 waveguide-FE transfer receptance).
 """
 from __future__ import annotations
@@ -19,7 +19,7 @@ from solvers.constants import thesis_contact_point
 from solvers.greens.kernels import (choose_grid, convolve_direct, convolve_fft, filter_history, green_from_receptance,
                            modal_filter, modal_kernel, moving_green, ring_convolver, ring_step)
 from solvers.wheel.receptance import wheel_receptance
-from tests.greens import DT, V, beam_transfer, wheel_case
+from pipeline.validation.references.greens import DT, V, beam_transfer, wheel_case
 
 
 def _ring_loop(rc, F):
@@ -96,7 +96,7 @@ def run() -> str:
     return f"""## Green's functions
 
 `solvers/greens/kernels.py`, dt = 36 us, C20 modal data: {w['source']}; rail: Euler-Bernoulli beam on a damped foundation
-(tests/greens). Medians of repeated runs after warm-up (numba compiled), one process.
+(pipeline/validation/references/greens.py). Medians of repeated runs after warm-up (numba compiled), one process.
 
 | operation | time |
 |---|---:|

@@ -5,7 +5,7 @@
 8 s of rolling at dt = 36 us (222,222 steps) with the point-contact model, the whole time loop
 in numba, after JIT warm-up, one core: the default case's Green's functions as the pipeline
 passes them (build/cases/default/greens.npz: the C20's modes below 7 kHz at the default contact point y^W = +32 mm and
-the BV50 moving kernel, 4096 lags); without that artifact the C20 modes of tests/greens and a
+the BV50 moving kernel, 4096 lags); without that artifact the C20 modes of pipeline/validation/references/greens.py and a
 2048-lag kernel from build/rails/bv50/rail.npz (else the analytic beam); the default contact
 (build/cases/default/contact.npz, else the analytic Hertz stand-in).  Also the cost per step
 of the reference drivers (Python loop): per-step NORM and Kalker's transient TANG.
@@ -19,7 +19,7 @@ from benchmarks.timing import median_time, min_time
 from solvers.timeloop.partitioned import DEFAULT_BLOCK
 
 from solvers.timeloop.interaction import WheelModes, point_contact, simulate
-from tests.interaction import (CONTACT, DT, GAMMA_Y, MU as MU_DEFAULT, RAIL, ROOT, V, beam_kernel, bv50_kernel,
+from pipeline.validation.references.interaction import (CONTACT, DT, GAMMA_Y, MU as MU_DEFAULT, RAIL, ROOT, V, beam_kernel, bv50_kernel,
                                c20_modes, default_contact)
 
 RAIL_LAGS = 2048
@@ -139,10 +139,10 @@ def run() -> str:
         rail_src = "BV50, greens stage (build/cases/default/greens.npz)"
     elif RAIL.exists():
         g = bv50_kernel(DT, V, n_lags=RAIL_LAGS)
-        rail_src = "BV50 (tests.interaction.bv50_kernel from build/rails/bv50/rail.npz)"
+        rail_src = "BV50 (pipeline.validation.references.interaction.bv50_kernel from build/rails/bv50/rail.npz)"
     else:
         g = beam_kernel(DT, V, n_lags=RAIL_LAGS, n_t=8192)
-        rail_src = "analytic beam (tests/greens)"
+        rail_src = "analytic beam (pipeline/validation/references/greens.py)"
     n_rigid = int(np.sum(wc["kind"] != "flexible")) if "kind" in wc else 3
     kw = dict(dt=DT, v=V, gamma_y=GAMMA_Y, stop=None)
     simulate(wheel, g, contact, duration=0.01, **kw)                 # JIT warm-up (or cache load)

@@ -71,7 +71,7 @@ def _run(tmp: Path, early: bool, workers: int, quick: bool) -> dict:
 
 def run(quick: bool = False) -> str:
     from benchmarks.__main__ import machine
-    from tests.study.conftest import ensure_case
+    from pipeline.validation.make import ensure_case
 
     os.environ.setdefault("OMP_NUM_THREADS", "1")
     ensure_case("default")

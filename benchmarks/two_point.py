@@ -5,7 +5,7 @@
 8 s of rolling at dt = 36 us, no early stop, after JIT warm-up, one core, the one-point loop and
 the two-point loop side by side in one run (alternated, minimum of 5 each).  Structures of the
 default case (build/cases/default/greens.npz: 37 C20 modes, the 4096-lag BV50 moving kernel;
-else the test stand-ins of tests.interaction); the two-point runs use that kernel for every rail
+else the test stand-ins of pipeline.validation.references.interaction); the two-point runs use that kernel for every rail
 block (the cost of a 4 x 4 moving kernel of that length) and the wheel's shapes at the first
 point for the second too; contact: the default contact (or its Hertz stand-in) at both points.
 """
@@ -18,7 +18,7 @@ import numpy as np
 from benchmarks.timing import min_time
 from solvers.timeloop.interaction import WheelModes, simulate
 from solvers.timeloop.two_point_driver import SecondPoint, simulate_two
-from tests.interaction import CONTACT, DT, GAMMA_Y, PRELOAD, V, beam_kernel, c20_modes, default_contact, ROOT
+from pipeline.validation.references.interaction import CONTACT, DT, GAMMA_Y, PRELOAD, V, beam_kernel, c20_modes, default_contact, ROOT
 
 GREENS = ROOT / "build" / "cases" / "default" / "greens.npz"
 
@@ -29,7 +29,7 @@ def structures():
             return (WheelModes(d["wheel_f"], d["wheel_mass"], d["wheel_zeta"], d["wheel_phi"]), d["rail_kernel"],
                     "build/cases/default/greens.npz")
     wheel, _ = c20_modes()
-    return wheel, beam_kernel(DT, V, n_lags=4096, n_t=8192), "tests.interaction stand-ins (C20 modes, beam kernel)"
+    return wheel, beam_kernel(DT, V, n_lags=4096, n_t=8192), "pipeline.validation.references.interaction stand-ins (C20 modes, beam kernel)"
 
 
 def run() -> str:

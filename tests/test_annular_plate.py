@@ -1,5 +1,5 @@
 """Validation of the exact annular-plate reference (inner edge clamped, outer
-edge free, Kirchhoff theory) in tests/analytic/annular_plate.py.
+edge free, Kirchhoff theory) in pipeline/validation/references/annular_plate.py.
 
 lambda^2 = omega a^2 sqrt(rho h / D), D = E h^3 / (12 (1 - nu^2)), nu = 0.3.
 
@@ -44,7 +44,7 @@ from scipy import special
 from scipy.linalg import eigh
 from scipy.optimize import brentq
 
-from tests.analytic.annular_plate import (
+from pipeline.validation.references.annular_plate import (
     annular_plate_frequencies,
     flexural_rigidity,
     frequency_determinant,

@@ -14,7 +14,7 @@ import pytest
 
 from geometry.mesher import mesh_section, read_msh
 from geometry.outline import Segment
-from tests.analytic.free_disc import free_disc_nondimensional
+from pipeline.validation.references.free_disc import free_disc_nondimensional
 
 A, H = 0.2, 0.002
 E, NU, RHO = 210e9, 0.3, 7850.0

@@ -1,5 +1,5 @@
 """The C20 model against the reference eigenfrequencies (SPEC 3.1; source
-thesis Table 4.1, tests/reference/c20_modes.csv): every listed mode found
+thesis Table 4.1, pipeline/validation/references/data/c20_modes.csv): every listed mode found
 with its label, (n, 0, a) for n = 0..8 within 3 %, median within 5 %, none
 worse than 10 %."""
 from pathlib import Path

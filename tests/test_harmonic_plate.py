@@ -4,7 +4,7 @@ A thin annular plate, inner edge r = b clamped, outer edge r = a free, is
 meshed as its (r, z) cross-section -- a 300 mm x 4 mm strip -- and solved
 with solvers.wheel.axisym.HarmonicSolver (3D elasticity in each harmonic n,
 P2 triangles).  Its out-of-plane (axial, U_z) modes are compared with
-tests/analytic/annular_plate.py (exact Kirchhoff theory).
+pipeline/validation/references/annular_plate.py (exact Kirchhoff theory).
 
 Plate: a = 0.4 m, b = 0.1 m, h = 4 mm (h/a = 0.01), steel.  Model error of
 Kirchhoff theory (no shear deformation, no rotary inertia, plane stress
@@ -25,7 +25,7 @@ import pytest
 
 from geometry.mesher import mesh_section, read_msh
 from geometry.outline import Segment
-from tests.analytic.annular_plate import annular_plate_frequencies
+from pipeline.validation.references.annular_plate import annular_plate_frequencies
 
 A, B, H = 0.4, 0.1, 0.004
 E, NU, RHO = 210e9, 0.3, 7850.0

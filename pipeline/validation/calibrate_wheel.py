@@ -5,7 +5,7 @@ The C20 drawing is not public (geometry/wheels/c20.toml).  Its free section para
 are fitted to the targets in ``TARGETS``:
 
 * the 34 eigenfrequencies of the reference table (thesis Table 4.1,
-  tests/reference/c20_modes.csv): residual log(f_model / f_ref) per mode, the (n, 0, a) modes
+  pipeline/validation/references/data/c20_modes.csv): residual log(f_model / f_ref) per mode, the (n, 0, a) modes
   weighted x 3 (they squeal, SPEC 1), errors beyond 4.5 % ten times dearer (every mode must stay
   within 5 %); a label the model misses costs a fixed 0.3;
 * the vertical-lateral coupling of the (2,0,a) and (3,0,a) modes on the tread: Phi_3/Phi_2 = 0 at
@@ -49,7 +49,7 @@ FREE = {
     ("hub", "outer_radius"): (0.120, 0.160),      # the web's free length: its (n,2,a) modes
 }
 TARGETS = {
-    "reference": "tests/reference/c20_modes.csv",
+    "reference": "pipeline/validation/references/data/c20_modes.csv",
     "axial_weight": 3.0,
     "missing_cost": 0.3,
     # frequency errors beyond this (log) cost `excess_weight` times more: the wheel must keep

@@ -4,9 +4,9 @@ import pytest
 
 from solvers.contact.compliance import compliance_table, contact_compliance, table_compliance
 from solvers.contact.norm import approach_for_load, norm_table
-from tests.analytic.hertz import ellipsoidal_traction_compliance, hertz
-from tests.contact.cases import DX, E, G, NU, grid, hertz_case
-from tests.contact.kalker_table import creep_coefficient
+from pipeline.validation.references.hertz import ellipsoidal_traction_compliance, hertz
+from pipeline.validation.references.contact import DX, E, G, NU, grid, hertz_case
+from pipeline.validation.references.kalker import creep_coefficient
 
 
 def test_circle_matches_mindlin():

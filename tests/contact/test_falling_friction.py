@@ -1,5 +1,5 @@
 """Steady creep curves with falling friction against CONTACT (Vollebregt's open-source CONTACT,
-its printed numbers and every input in tests/contact/contact_peer.py): force vs creepage,
+its printed numbers and every input in pipeline/validation/references/contact_peer.py): force vs creepage,
 lateral and longitudinal, with and without spin, on a Hertzian contact, for CONTACT's
 exponential (L=4), rational (L=3) and linear (L=2) falling laws.  The project's steady TANG
 with the local coefficient mu(|s|) (solvers.contact.tang.falling) agrees within 0.5 %.
@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from tests.contact.contact_peer import (CONTACT_CREEP, CONTACT_TRANSIENT, CONTACT_TWO_PATCH, CREEP, GEOMETRIES, LAWS,
+from pipeline.validation.references.contact_peer import (CONTACT_CREEP, CONTACT_TRANSIENT, CONTACT_TWO_PATCH, CREEP, GEOMETRIES, LAWS,
                                         SETS, TRANSIENT_LAW, creep_curves, hertz_contact, patch_forces,
                                         transient_run)
 
@@ -77,7 +77,7 @@ def test_contact_peer_report(contact):
     from solvers.contact.friction import rf_curve
     from solvers.contact.friction_laws import get_friction_law, preset
     from solvers.contact.norm import approach_for_load
-    from tests.contact.cases import V as V_RF, hertz_case
+    from pipeline.validation.references.contact import V as V_RF, hertz_case
 
     res, rows, times = {}, [], []
     for name in CONTACT_CREEP:
@@ -169,7 +169,7 @@ tests/contact/test_falling_friction.py --validation`); the fast tests `test_fall
 `test_two_patch.py` assert the same numbers.  The peer is E.A.H. Vollebregt's open-source CONTACT
 (github.com/eve70a/CONTACT, commit d431cdb of 2025-07-23, Revision 2707), compiled with gfortran outside this
 repository (its code is not part of the project); its printed results and every input are in
-`tests/contact/contact_peer.py`.
+`pipeline/validation/references/contact_peer.py`.
 
 ### Creep curves with falling friction (steady rolling, Hertz)
 

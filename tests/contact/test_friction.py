@@ -6,7 +6,7 @@ import pytest
 from solvers.contact.friction import GAMMA_END, mu_rf, rf_curve
 from solvers.contact.norm import approach_for_load
 from solvers.contact.tang import tang_steady
-from tests.contact.cases import DX, V, hertz_case
+from pipeline.validation.references.contact import DX, V, hertz_case
 
 MUS = np.round(np.arange(0.1, 0.6001, 0.05), 2)
 

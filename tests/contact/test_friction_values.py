@@ -7,7 +7,7 @@ from pipeline.caches.friction_curves import CurveCache, Friction, curve_arrays, 
 from solvers.contact.friction import rf_curve
 from solvers.contact.norm import approach_for_load
 from solvers.timeloop.inputs import contact_model, curve_label
-from tests.contact.cases import E, NU, V, hertz_case
+from pipeline.validation.references.contact import E, NU, V, hertz_case
 
 D = 1e-3                                     # 1 mm grid: fast
 

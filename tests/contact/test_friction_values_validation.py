@@ -1,6 +1,6 @@
 """Friction curves at any value (issue 26), validated: the curve at mu = 0.33 (a value the contact
 stage did not build before) between its neighbours 0.30 and 0.35, self-similar with them, and its
-slope at zero slip against Kalker's linear theory (tests/contact/kalker_table.py, Kalker's Table
+slope at zero slip against Kalker's linear theory (pipeline/validation/references/kalker.py, Kalker's Table
 E.3), on the Hertzian wheel/rail contact of SPEC 6 and on the default case's worn-profile contact.
 Written to docs/validation/32_friction_values.md (+ friction_values.png; make validate)."""
 from pathlib import Path
@@ -50,8 +50,8 @@ def test_curve_at_033_between_neighbours_and_kalker_slope():
 
     from pipeline.stages.contact import contact_setup
     from solvers.contact.surfaces import patch_metrics
-    from tests.contact.cases import DX, E, NU, V, hertz_case
-    from tests.contact.kalker_table import creep_coefficient
+    from pipeline.validation.references.contact import DX, E, NU, V, hertz_case
+    from pipeline.validation.references.kalker import creep_coefficient
     from solvers.contact.norm import approach_for_load
 
     G = E / (2 * (1 + NU))

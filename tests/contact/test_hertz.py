@@ -1,8 +1,8 @@
-"""Checks of the Hertz reference itself (tests/analytic/hertz.py)."""
+"""Checks of the Hertz reference itself (pipeline/validation/references/hertz.py)."""
 import numpy as np
 import pytest
 
-from tests.analytic.hertz import (contact_modulus, curvature_ratio, eccentricity, ellipsoidal_traction_compliance,
+from pipeline.validation.references.hertz import (contact_modulus, curvature_ratio, eccentricity, ellipsoidal_traction_compliance,
                                   hertz, load_for_approach, wheel_rail)
 
 

@@ -6,7 +6,7 @@ from scipy.integrate import dblquad
 
 from solvers.contact.influence import (Convolver, boussinesq, cerruti, dense_matrix, normal_kernel,
                                        strang_inverse_symbol, tangential_kernels)
-from tests.contact.cases import E, G, NU
+from pipeline.validation.references.contact import E, G, NU
 
 DX, DY = 0.5e-3, 0.3e-3
 

@@ -4,9 +4,9 @@ import pytest
 
 from solvers.contact.norm import (approach_for_load, norm, norm_table, table_force, table_midpoint_error,
                                   table_pressure)
-from tests.analytic.hertz import hertz, load_for_approach
+from pipeline.validation.references.hertz import hertz, load_for_approach
 from solvers.contact.influence import dense_matrix, normal_kernel
-from tests.contact.cases import DX, E, LOAD, NU, ellipse_fit, grid, hertz_case
+from pipeline.validation.references.contact import DX, E, LOAD, NU, ellipse_fit, grid, hertz_case
 
 
 @pytest.fixture(scope="module")

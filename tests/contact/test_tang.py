@@ -5,9 +5,9 @@ import pytest
 
 from solvers.contact.norm import approach_for_load
 from solvers.contact.tang import tang_steady, tang_transient
-from tests.analytic.hertz import curvature_ratio, hertz
-from tests.contact.cases import G, V, carter_creepage, carter_traction, grid, hertz_case
-from tests.contact.kalker_table import creep_coefficient
+from pipeline.validation.references.hertz import curvature_ratio, hertz
+from pipeline.validation.references.contact import G, V, carter_creepage, carter_traction, grid, hertz_case
+from pipeline.validation.references.kalker import creep_coefficient
 
 MU = 0.3
 
@@ -154,7 +154,7 @@ def _small_contact(n=13):
 @pytest.mark.parametrize("kw", [dict(gamma_y=-0.002), dict(gamma_x=0.001, gamma_y=0.0015),
                                 dict(gamma_y=-6e-4, spin=0.6 / 5.4e-3), dict(gamma_y=-0.02)])
 def test_fft_solver_matches_dense_reference_steady(kw):
-    from tests.contact.tang_dense import tang_dense
+    from pipeline.validation.references.tang_dense import tang_dense
 
     p3, dx, dy = _small_contact()
     sol = tang_steady(p3, dx, dy, V, MU, tol=1e-12, **kw)
@@ -166,7 +166,7 @@ def test_fft_solver_matches_dense_reference_steady(kw):
 
 
 def test_fft_solver_matches_dense_reference_transient():
-    from tests.contact.tang_dense import tang_dense
+    from pipeline.validation.references.tang_dense import tang_dense
 
     p3, dx, dy = _small_contact()
     st, prev = None, None

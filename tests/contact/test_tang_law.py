@@ -8,7 +8,7 @@ from solvers.contact.friction import rf_curve
 from solvers.contact.friction_laws import get_friction_law
 from solvers.contact.norm import approach_for_load
 from solvers.contact.tang import tang_steady, tang_transient
-from tests.contact.cases import V, hertz_case
+from pipeline.validation.references.contact import V, hertz_case
 
 DXY = 1e-3
 

@@ -1,12 +1,12 @@
 """A static two-patch normal problem (two contact zones on one grid, interacting through the
 half-space) against CONTACT: the project's NORM at the same total load gives each patch's
 normal force within 1 % (it agrees to about 1e-6).  Inputs and CONTACT's numbers:
-tests/contact/contact_peer.py."""
+pipeline/validation/references/contact_peer.py."""
 import numpy as np
 import pytest
 
 from solvers.contact.norm import norm
-from tests.contact.contact_peer import CONTACT_TWO_PATCH, E30, NU30, PATCH_GRID, patch_forces, two_lobe_gap
+from pipeline.validation.references.contact_peer import CONTACT_TWO_PATCH, E30, NU30, PATCH_GRID, patch_forces, two_lobe_gap
 
 
 @pytest.mark.parametrize("key", list(CONTACT_TWO_PATCH))

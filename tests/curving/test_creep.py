@@ -1,4 +1,4 @@
-"""The curving solver's creep forces: Hertz's ellipse against tests/analytic/hertz.py, Kalker's
+"""The curving solver's creep forces: Hertz's ellipse against pipeline/validation/references/hertz.py, Kalker's
 coefficients (computed with TANG) against Kalker's Table E.3, the Shen-Hedrick-Elkins
 saturation against steady TANG on the same patch."""
 from __future__ import annotations
@@ -11,7 +11,7 @@ import pytest
 from solvers.contact.tang import tang_steady
 from solvers.curving.creep import CreepLaw, creep_forces, kalker_coefficients
 from solvers.curving.hertz import hertz_semi_axes
-from tests.contact.kalker_table import creep_coefficient
+from pipeline.validation.references.kalker import creep_coefficient
 
 MU, N = 0.35, 65e3
 A, B = 0.5 / 0.39, 0.5 / 0.3  # a 780 mm wheel on a 300 mm crown
@@ -19,7 +19,7 @@ A, B = 0.5 / 0.39, 0.5 / 0.3  # a 780 mm wheel on a 300 mm crown
 
 @pytest.mark.parametrize("A,B", [(1.0, 1.0), (0.5 / 0.39, 0.5 / 0.3), (1.3, 20.0), (12.0, 1.3)])
 def test_hertz_semi_axes(A, B):
-    from tests.analytic.hertz import hertz
+    from pipeline.validation.references.hertz import hertz
 
     a, b = hertz_semi_axes(A, B, N)
     ref = hertz(A, B, N)

@@ -9,7 +9,7 @@ import pytest
 
 from geometry.contact_point import rigid_contact
 from solvers.curving import CreepLaw, Profiles, Track, Vehicle, flange_edge, solve
-from tests.analytic.curving import linear_bogie, pure_rolling_shift
+from pipeline.validation.references.curving import linear_bogie, pure_rolling_shift
 from tests.curving.common import cone_pair, metro
 
 RESIDUAL = 1e-8   # "Done when" (4): force and moment residuals / wheel load

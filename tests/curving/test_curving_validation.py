@@ -13,7 +13,7 @@ import pytest
 
 from pipeline.store.atomic import save_text
 from solvers.curving import solve
-from tests.analytic.curving import pure_rolling_shift
+from pipeline.validation.references.curving import pure_rolling_shift
 from tests.curving.test_curving import RESIDUAL, _linear_case, independent_conicity
 
 pytestmark = pytest.mark.validation
@@ -53,7 +53,7 @@ def test_curving_validation_writeup():
     from pipeline.curve.curving import solve_curve
     from postprocess.plots.curving import bogie_in_curve, radius_sweep
     from solvers.curving.creep import kalker_coefficients
-    from tests.contact.kalker_table import creep_coefficient
+    from pipeline.validation.references.kalker import creep_coefficient
     from tests.curving.common import metro
 
     out = ["## Steady curving (issue 25)", "",
@@ -98,7 +98,7 @@ def test_curving_validation_writeup():
             "psi_2 = -psi_1 and psi_b = 2 a f22 psi_1 / k_psi the six equations give",
             "", "    psi_1 = (a/R) / [1 + 4 f11 f22 l0 lam / (r0 k_psi) (a^2/k_psi + 1/k_y)]",
             "    y_1   = r0 l0 / (lam R) + r0 a f22 psi_1 / (lam f11 l0) + 2 f22 psi_1 (a^2/k_psi + 1/k_y)", "",
-            "(`tests/analytic/curving.py`).  The solver keeps what the theory drops (the roll moment of the "
+            "(`pipeline/validation/references/curving.py`).  The solver keeps what the theory drops (the roll moment of the "
             "lateral forces and the shifted lever arms move load between the wheels, whose normal forces then "
             "push sideways on the 1:200 cone; a 10 kN wheel load keeps that below 1 %):", "", *rows, ""]
     # (3) stiff bogie
@@ -128,7 +128,7 @@ def test_curving_validation_writeup():
         rows.append(f"| {r:g} | " + " | ".join(f"{g:.3f} / {k:.3f}" for g, k in zip(got, ref)) + " |")
     out += ["### Creep forces", "",
             "Kalker's no-slip coefficients computed by the project's steady TANG (40 x 40 elements on the Hertz "
-            "pressure) against Kalker's Table E.3 (nu = 0.3, `tests/reference/kalker_creep_coefficients.csv`): "
+            "pressure) against Kalker's Table E.3 (nu = 0.3, `pipeline/validation/references/data/kalker_creep_coefficients.csv`): "
             "1-3 % high (the grid), asserted within 3.5 %.  The Shen-Hedrick-Elkins saturation against steady "
             "TANG on the same patch (65 kN, 780 mm wheel on a 300 mm crown, mu = 0.35): within 0.03 mu N for "
             "pure lateral creepage, within 0.08 mu N with longitudinal creepage and a tread spin of 0.3 1/m "

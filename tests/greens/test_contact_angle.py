@@ -19,7 +19,7 @@ from pipeline.config.contact_plane import RAIL_MATRICES, WHEEL_MATRICES, project
 from solvers.contact.frame import normal_preload, project_receptance, project_shapes, rotation, to_structure
 from solvers.greens.kernels import choose_grid, frequency_grid, green_from_receptance
 from solvers.wheel.receptance import wheel_receptance
-from tests.greens import DT, kernel_spectrum, pointwise_error, wheel_case
+from pipeline.validation.references.greens import DT, kernel_spectrum, pointwise_error, wheel_case
 
 ANGLE = math.radians(-21.0)      # a gauge-corner-like contact angle (tread contacts: a few degrees)
 

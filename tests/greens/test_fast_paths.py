@@ -8,8 +8,8 @@ import pytest
 from solvers.greens.kernels import convolve_direct, moving_green, ring_convolver, ring_step
 from solvers.rail.moving_kernel import mirror, moving_green_waves
 from solvers.timeloop.partitioned import partitioned_convolver, partitioned_step
-from tests.greens import DT, V
-from tests.interaction import RAIL
+from pipeline.validation.references.greens import DT, V
+from pipeline.validation.references.interaction import RAIL
 
 
 def _transfer(K, A, n_t):

@@ -8,7 +8,7 @@ from solvers.greens.kernels import (choose_grid, convolve_direct, convolve_fft, 
                            green_from_receptance, modal_filter, modal_impulse, modal_kernel, ring_convolver,
                            ring_step)
 from solvers.wheel.receptance import wheel_receptance
-from tests.greens import DT, wheel_case
+from pipeline.validation.references.greens import DT, wheel_case
 
 
 def _modal_set():

@@ -9,7 +9,7 @@ from scipy.special import sici
 from solvers.greens.kernels import (GreenDecayError, choose_grid, decayed, frequency_grid, green_from_receptance,
                            points_in_band)
 from solvers.wheel.receptance import wheel_receptance
-from tests.greens import (DT, band_rms, kernel_spectrum, participating_peaks, passivity, pointwise_error, sdof_impulse,
+from pipeline.validation.references.greens import (DT, band_rms, kernel_spectrum, participating_peaks, passivity, pointwise_error, sdof_impulse,
                           sdof_receptance, wheel_case)
 
 M, F0, ZETA = 50.0, 500.0, 1e-3

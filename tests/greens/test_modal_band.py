@@ -10,7 +10,7 @@ from solvers.greens.kernels import choose_grid, frequency_grid, green_from_recep
 from solvers.wheel.modal_band import corrected_modal_kernel, decay_db, spectrum
 from solvers.wheel.modal_filter import modal_kernel_dtft
 from solvers.wheel.receptance import wheel_receptance
-from tests.greens import DT, pointwise_error, wheel_case
+from pipeline.validation.references.greens import DT, pointwise_error, wheel_case
 
 
 def test_closed_form_spectrum_is_the_fft_of_the_long_kernel():

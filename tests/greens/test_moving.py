@@ -1,11 +1,11 @@
 """Moving Green's function of the rail (SPEC 3.4) with an analytic beam-on-damped-
-foundation transfer receptance (tests/greens/__init__.py)."""
+foundation transfer receptance (pipeline/validation/references/greens.py)."""
 import numpy as np
 import pytest
 
 from solvers.greens.kernels import decayed, green_from_receptance, moving_green
 from solvers.greens.kernels import frequency_grid
-from tests.greens import (DT, LATERAL, VERTICAL, V, beam_impulse, beam_moving_receptance, beam_receptance, beam_transfer,
+from pipeline.validation.references.greens import (DT, LATERAL, VERTICAL, V, beam_impulse, beam_moving_receptance, beam_receptance, beam_transfer,
                           kernel_spectrum, pointwise_error)
 
 N_T = 4096          # N_t/2 dt = 74 ms: the pad-damped beams decay by > 100 dB

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from tests.interaction import ROOT
+from pipeline.validation.references.interaction import ROOT
 
 MSH = ROOT / "build" / "rails" / "bv50" / "section.msh"
 F = np.array([80.0, 400.0, 1500.0, 4000.0])

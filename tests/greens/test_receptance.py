@@ -5,7 +5,7 @@ import pytest
 from solvers.wheel.receptance import (ContactPoint, contact_node, contact_point, contact_shape, modal_damping,
                                 receptance_by_harmonic, shape_at, surface_edges, transfer_receptance,
                                 wheel_receptance)
-from tests.greens import ARTIFACT, Y_CONTACT, Z_RC, sdof_receptance, tread_radius_function, wheel_case
+from pipeline.validation.references.greens import ARTIFACT, Y_CONTACT, Z_RC, sdof_receptance, tread_radius_function, wheel_case
 
 needs_artifact = pytest.mark.skipif(not ARTIFACT.exists(), reason="no build/wheels/c20/modes.npz")
 

@@ -16,7 +16,7 @@ import numpy as np
 from solvers.greens.kernels import (choose_grid, convolve_direct, decayed, frequency_grid, green_from_receptance,
                            modal_filter, modal_kernel, moving_green, points_in_band)
 from solvers.wheel.receptance import contact_node, contact_shape, wheel_receptance
-from tests.greens import (ARTIFACT, DT, LATERAL, V, VERTICAL, Y_CONTACT, Z_RC, band_rms, beam_impulse,
+from pipeline.validation.references.greens import (ARTIFACT, DT, LATERAL, V, VERTICAL, Y_CONTACT, Z_RC, band_rms, beam_impulse,
                           beam_moving_receptance, beam_receptance, beam_transfer, kernel_spectrum, participating_peaks,
                           passivity, pointwise_error, sdof_impulse, sdof_receptance, tread_radius_function, wheel_case)
 from tests.greens.test_green import bandlimit_error
@@ -434,7 +434,7 @@ def moving_section() -> str:
     vp, lp = VERTICAL, LATERAL
     return f"""### Moving Green's function of the rail (SPEC 3.4)
 
-Reference (tests/greens/__init__.py, independent of the rail stage): Euler-Bernoulli beams on a viscously damped
+Reference (pipeline/validation/references/greens.py, independent of the rail stage): Euler-Bernoulli beams on a viscously damped
 Winkler foundation, closed-form transfer receptance G(x) = beta/(2K) exp(-beta|x|)(cos beta|x| + sin beta|x|),
 K = k_s + i W c_s - m W^2, beta = (K/4EI)^(1/4); vertical EI = {vp['EI']:.3g} N m^2, m = {vp['m']:.0f} kg/m,
 k_s = {vp['k_s']:.2g} N/m^2, c_s = {vp['c_s']:.2g} N s/m^2; an uncoupled lateral beam EI = {lp['EI']:.3g}, k_s = {lp['k_s']:.2g},

@@ -10,7 +10,7 @@ from solvers.contact.falling import is_falling, scaled_curve, tail_decay, tang_c
 from solvers.contact.friction import monotone_slopes, mu_and_slope, mu_rf
 from solvers.contact.friction_laws import get_friction_law
 from solvers.timeloop.interaction import point_contact, simulate, static_approach, steady_forces
-from tests.interaction import CONTACT, DT, GAMMA_Y, PRELOAD, V, default_contact, hertz_contact
+from pipeline.validation.references.interaction import CONTACT, DT, GAMMA_Y, PRELOAD, V, default_contact, hertz_contact
 
 LAW = get_friction_law("polach", mu0=0.35, A=0.25 / 0.35, B=2.0)     # 0.35 -> 0.25, decay velocity 0.5 m/s
 

@@ -9,7 +9,7 @@ import pytest
 from solvers.contact.friction import mu_rf
 from solvers.contact.norm import table_force
 from solvers.timeloop.interaction import WheelModes, refine_table, simulate
-from tests.interaction import (DT, GAMMA_Y, PRELOAD, ROOT, V, default_contact, hertz_contact, reduced_squealer)
+from pipeline.validation.references.interaction import (DT, GAMMA_Y, PRELOAD, ROOT, V, default_contact, hertz_contact, reduced_squealer)
 
 
 @pytest.fixture(scope="module")

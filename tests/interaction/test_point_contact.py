@@ -7,7 +7,7 @@ import pytest
 
 from solvers.contact.friction import monotone_slopes, mu_rf
 from solvers.timeloop.interaction import EPS_SLIP, point_contact, mu_and_slope, steady_forces
-from tests.interaction import DT, GAMMA_Y, PRELOAD, V, default_contact
+from pipeline.validation.references.interaction import DT, GAMMA_Y, PRELOAD, V, default_contact
 
 
 @pytest.fixture(scope="module")

@@ -10,10 +10,10 @@ from solvers.contact.norm import NormTable, table_pressure
 from solvers.contact.spin import linear_creep_matrix, spin_lengths
 from solvers.contact.tang import tang_steady
 from solvers.timeloop.interaction import simulate, static_approach
-from tests.analytic.hertz import curvature_ratio, hertz
-from tests.contact.cases import grid
-from tests.contact.kalker_table import creep_coefficient
-from tests.interaction import CONTACT, DT, PRELOAD, V, default_contact
+from pipeline.validation.references.hertz import curvature_ratio, hertz
+from pipeline.validation.references.contact import grid
+from pipeline.validation.references.kalker import creep_coefficient
+from pipeline.validation.references.interaction import CONTACT, DT, PRELOAD, V, default_contact
 
 
 @pytest.mark.parametrize("b_over_a", [0.5, 0.84, 2.0])

@@ -15,7 +15,7 @@ import pytest
 from solvers.timeloop.interaction import simulate
 from solvers.timeloop.inputs import static_approach
 from solvers.timeloop.two_point_driver import SecondPoint, simulate_two, static_state
-from tests.interaction import DT, GAMMA_Y, PRELOAD, V, beam_kernel, c20_modes, hertz_contact
+from pipeline.validation.references.interaction import DT, GAMMA_Y, PRELOAD, V, beam_kernel, c20_modes, hertz_contact
 
 DURATION = 0.3
 

@@ -18,7 +18,7 @@ import pytest
 
 from solvers.timeloop.interaction import WheelModes, contact_model, simulate
 from solvers.timeloop.two_point_driver import SecondPoint, simulate_two
-from tests.interaction import DT, ROOT, V, beam_kernel, c20_modes
+from pipeline.validation.references.interaction import DT, ROOT, V, beam_kernel, c20_modes
 
 DOCS = ROOT / "docs" / "validation" / "34_two_points.md"
 CASES = ROOT / "build" / "cases"
@@ -60,8 +60,8 @@ def position_row(case: str) -> str:
 
 @pytest.mark.validation
 def test_two_points_and_contact_angle_report():
-    from tests.greens import test_contact_angle as tca
-    from tests.interaction import test_two_point as ttp
+    from pipeline.validation.references.greens import test_contact_angle as tca
+    from pipeline.validation.references.interaction import test_two_point as ttp
     from tests.stability import test_two_point_screen as tts
 
     lines = []
@@ -96,7 +96,7 @@ def test_two_points_and_contact_angle_report():
     assert abs(m1["L_F2"] - 53.190321) < 1e-5 and abs(m1["f_dominant"] - 434.764102) < 1e-5   # the reference
 
     # ---- contact angle: the C20 kernel check and the default case in the contact plane
-    wc = __import__("tests.greens", fromlist=["wheel_case"]).wheel_case(-0.032)
+    wc = __import__("pipeline.validation.references.greens", fromlist=["wheel_case"]).wheel_case(-0.032)
     from solvers.greens.kernels import choose_grid, frequency_grid
 
     n_t = choose_grid(wc["f_hz"], wc["zeta"], DT, decay_db=120)

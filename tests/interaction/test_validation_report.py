@@ -19,7 +19,7 @@ import pytest
 
 from solvers.constants import thesis_contact_point
 from solvers.timeloop.interaction import WheelModes, contact_model, refine_table, simulate
-from tests.interaction import (CONTACT, DT, GAMMA_Y, PRELOAD, RAIL, V, bv50_kernel, contact_stiffness,
+from pipeline.validation.references.interaction import (CONTACT, DT, GAMMA_Y, PRELOAD, RAIL, V, bv50_kernel, contact_stiffness,
                                decay_rates, default_contact, rail_point_receptance, reduced_squealer,
                                single_mode_growth)
 
@@ -65,7 +65,7 @@ def build_contact(dy_mm: int, dt: float, mu: float = MU):
 
 
 def wheel_at(y_w: float) -> tuple[WheelModes, dict]:
-    from tests.greens import wheel_case
+    from pipeline.validation.references.greens import wheel_case
 
     w = wheel_case(y_w)
     return WheelModes(w["f_hz"], w["modal_mass"], w["zeta"], w["phi"]), w

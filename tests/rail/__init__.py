@@ -58,7 +58,7 @@ def rail_model(name: str = "bv50", mesh_scale: float = 1.0):
 
 def beam_params(model) -> dict:
     """Section and support properties of the FE model for the analytic
-    beams (tests/analytic/beam.py): vertical TBOEF and lateral-torsional."""
+    beams (pipeline/validation/references/beam.py): vertical TBOEF and lateral-torsional."""
     p = model.rail
     t = model.props["torsion"]
     pad = model.props["pad"]

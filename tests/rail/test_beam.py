@@ -1,10 +1,10 @@
-"""Self-checks of the analytic beam references (tests/analytic/beam.py)."""
+"""Self-checks of the analytic beam references (pipeline/validation/references/beam.py)."""
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from tests.analytic import beam
+from pipeline.validation.references import beam
 
 EI, KGA, M, RHOI, KS = 4.07e6, 2.1e8, 50.0, 0.155, 2.0e8
 

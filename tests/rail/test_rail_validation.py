@@ -45,7 +45,7 @@ def test_rail_validation_report():
     from geometry.rail import head_profile, section_properties
     from solvers.rail import response as rr
     from solvers.rail import waveguide as wg
-    from tests.analytic import beam
+    from pipeline.validation.references import beam
     from tests.rail import assembled, beam_params, rail_model, rail_params
     from tests.rail.test_response import _direct
 
@@ -55,7 +55,7 @@ def test_rail_validation_report():
         "Produced by `tests/rail/test_rail_validation.py` (`make validate`). Model: "
         "`geometry/rail.py` (section from `geometry/rails/bv50.toml`), `solvers/rail/waveguide.py` (SAFE/WFE "
         "matrices, SLEPc dispersion, wave types), `solvers/rail/response.py` (receptances by the wave "
-        "expansion); references in `tests/analytic/beam.py`. The source thesis (Zenzerovic 2014, section "
+        "expansion); references in `pipeline/validation/references/beam.py`. The source thesis (Zenzerovic 2014, section "
         "4.2.2, Figs. 4.5-4.6) uses a BV50 rail, continuously supported with the rail pad, modelled with "
         "waveguide FE (WANDS, after Pieringer 2011); this is an independent implementation of that model "
         "class, not a copy of its numbers.")
@@ -354,7 +354,7 @@ def test_rail_validation_report():
             worst_l = max(worst_l, abs(rl - 1))
         rows.append(f"| {fv} | {r0:.3f} | {r1:.3f} | {r2:.3f} | {rm:.3f} | {rl:.3f} | {rc:.3f} |")
     md += ["### Against analytic beams", "",
-           "References (`tests/analytic/beam.py`, exact residue sums, independent of the FE code): vertical "
+           "References (`pipeline/validation/references/beam.py`, exact residue sums, independent of the FE code): vertical "
            "Timoshenko beam on a Winkler foundation with EI, A, rho I of the mesh, kappa = 0.4 (the usual "
            "rail value; the free-rail FE dispersion agrees with it to 0.6 % up to k = 3 rad/m), "
            "k_s = k_pad (1 + i eta_pad), EI (1 + i eta_steel). Off the centre line a vertical load also twists "

@@ -24,7 +24,7 @@ import pytest
 from scipy.sparse.linalg import splu
 
 from solvers.rail import response as rr
-from tests.analytic import beam
+from pipeline.validation.references import beam
 from tests.rail import beam_params, rail_model
 
 

@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 
 from solvers.rail import waveguide as wg
-from tests.analytic.beam import timoshenko_dispersion
+from pipeline.validation.references.beam import timoshenko_dispersion
 from tests.rail import assembled, rail_model
 
 

@@ -10,7 +10,7 @@ from solvers.greens.kernels import modal_kernel
 from solvers.timeloop.interaction import WheelModes, simulate
 from solvers.stability.screen import (Basis, LinearModel, linearise, rail_receptance_z, screen, track_roots, wheel_receptance_z,
                                wheel_roots)
-from tests.interaction import DT, GAMMA_Y, PRELOAD, V, decay_rates, hertz_contact, reduced_squealer
+from pipeline.validation.references.interaction import DT, GAMMA_Y, PRELOAD, V, decay_rates, hertz_contact, reduced_squealer
 
 
 def test_wheel_transform_is_the_modal_filters_kernel():

@@ -15,7 +15,7 @@ from solvers.wheel.modal_filter import modal_filter
 from solvers.stability.screen import characteristic, linearise, wheel_roots
 from solvers.stability.two_point import linearise_two, wheel_roots as wheel_roots_two
 from solvers.timeloop.two_point_driver import SecondPoint
-from tests.interaction import DT, GAMMA_Y, PRELOAD, V, beam_kernel, c20_modes, hertz_contact
+from pipeline.validation.references.interaction import DT, GAMMA_Y, PRELOAD, V, beam_kernel, c20_modes, hertz_contact
 from tests.interaction.test_two_point import doubled
 
 

@@ -23,7 +23,7 @@ from pipeline.caches import friction_curves, rail_kernel, rail_surface_table
 from pipeline.store import deps
 from pipeline.store.code_hash import code_key, reached_files
 from pipeline.study import context, line
-from tests.study.conftest import ensure_case
+from pipeline.validation.make import ensure_case
 
 ROOT = Path(__file__).resolve().parents[2]
 CACHES = {

@@ -9,8 +9,8 @@ import numpy as np
 
 from solvers.timeloop.interaction import WheelModes, simulate
 from solvers.study import Outcome, damping_procedure
-from tests.greens import beam_transfer
-from tests.interaction import DT, V, beam_kernel, contact_stiffness, hertz_contact, single_mode_growth
+from pipeline.validation.references.greens import beam_transfer
+from pipeline.validation.references.interaction import DT, V, beam_kernel, contact_stiffness, hertz_contact, single_mode_growth
 
 MU, GAMMA, F_R, MASS, PHI = 0.35, -0.014, 1161.0, 35.0, (1.0, -0.15)
 

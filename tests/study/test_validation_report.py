@@ -91,7 +91,7 @@ def map_vs_simulate() -> tuple[list, list]:
 
 def damping_vs_linear(plot: bool = True) -> tuple[list, list]:
     import tests.study.test_damping_bisection as B
-    from tests.interaction import DT, V, beam_kernel, hertz_contact
+    from pipeline.validation.references.interaction import DT, V, beam_kernel, hertz_contact
 
     g = beam_kernel(DT, V)
     out, lines, logs = [], [], []

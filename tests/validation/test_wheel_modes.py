@@ -38,8 +38,8 @@ def _scaled(p: dict, factor: float) -> dict:
 
 
 def test_plates_against_kirchhoff(tmp_path):
-    from tests.analytic.annular_plate import annular_plate_frequencies
-    from tests.analytic.free_disc import free_disc_nondimensional
+    from pipeline.validation.references.annular_plate import annular_plate_frequencies
+    from pipeline.validation.references.free_disc import free_disc_nondimensional
     from tests.test_axis_regularity import A as DA, E, H as DH, NU, RHO
     from tests.test_harmonic_plate import A, B, H, plate_segments
     from geometry.mesher import mesh_section, read_msh
@@ -88,8 +88,8 @@ def test_plates_against_kirchhoff(tmp_path):
 
 Test: `tests/validation/test_wheel_modes.py::test_plates_against_kirchhoff` (fast versions with the same
 assertions: `tests/test_harmonic_plate.py`, `tests/test_axis_regularity.py`). The exact solutions are
-`tests/analytic/annular_plate.py` (checked against Blevins/Leissa's table and an independent Rayleigh-Ritz
-solution) and `tests/analytic/free_disc.py` (Leissa's free-plate values 5.358, 9.003, 12.439, 20.475).
+`pipeline/validation/references/annular_plate.py` (checked against Blevins/Leissa's table and an independent Rayleigh-Ritz
+solution) and `pipeline/validation/references/free_disc.py` (Leissa's free-plate values 5.358, 9.003, 12.439, 20.475).
 The free disc exercises the regularity conditions on the axis for every harmonic (n = 1 needs
 U_r + U_phi = 0). Thin plates (h/a = 0.01), P2 triangles, 2 through the thickness; the remaining
 difference is mostly Kirchhoff's own error (shear and rotary inertia, ~(kh)^2/5).
@@ -169,7 +169,7 @@ def test_c20_against_reference_with_mesh_convergence(tmp_path):
 
 Test: `tests/validation/test_wheel_modes.py::test_c20_against_reference_with_mesh_convergence`
 (the fast `tests/test_c20_reference.py` asserts the same criteria on the default mesh). Reference: the 34
-modes below 7 kHz of the source thesis' Table 4.1 (`tests/reference/c20_modes.csv`). Matching is by label
+modes below 7 kHz of the source thesis' Table 4.1 (`pipeline/validation/references/data/c20_modes.csv`). Matching is by label
 (n, m, class) as classified automatically by `solvers/wheel/mode_labels.py`. Model: `geometry/wheels/c20.toml`
 (flexible wheel clamped at the bore, P2 triangles; the three rigid half-wheelset modes below 20 Hz are not
 in the table).

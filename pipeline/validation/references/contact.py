@@ -1,9 +1,10 @@
-"""Contact cases shared by the contact tests and the validation report."""
+"""Contact cases shared by the contact tests, the validation writer and benchmarks/contact.py: a Hertzian
+wheel/rail case and Carter's 2D rolling solution (Carter 1926; Johnson, Contact Mechanics 1985, sec. 8.2)."""
 from __future__ import annotations
 
 import numpy as np
 
-from tests.analytic.hertz import HertzContact, hertz
+from pipeline.validation.references.hertz import HertzContact, hertz
 
 E, NU = 210e9, 0.3
 G = E / (2 * (1 + NU))

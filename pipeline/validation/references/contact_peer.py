@@ -30,7 +30,7 @@ import numpy as np
 from solvers.contact.friction_laws import get_friction_law
 from solvers.contact.norm import approach_for_load
 from solvers.contact.tang import tang_steady
-from tests.contact.cases import grid
+from pipeline.validation.references.contact import grid
 
 G28, NU28 = 82e9, 0.28
 E28 = 2 * G28 * (1 + NU28)

@@ -1,4 +1,4 @@
-"""Kalker's linear-theory creepage coefficients (tests/reference/kalker_creep_coefficients.csv,
+"""Kalker's linear-theory creepage coefficients (pipeline/validation/references/data/kalker_creep_coefficients.csv,
 Kalker's Table E.3) interpolated to a Poisson ratio and semi-axis ratio.
 
 Per the file header: quadratic in 1/C through nu = 0, 0.25, 0.5; between the
@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-CSV = Path(__file__).resolve().parents[1] / "reference" / "kalker_creep_coefficients.csv"
+CSV = Path(__file__).resolve().parent / "data" / "kalker_creep_coefficients.csv"
 
 
 def _rows():
