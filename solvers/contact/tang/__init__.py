@@ -71,7 +71,7 @@ Newton-CG solve, the FFTs through rocket-fft); the displacements after a Newton
 step are the sum of its CG products (A lift(x) = sum alpha_k A d_k) when the
 step is linear to LINEAR tol (the traction circle's curvature below that), so
 such a step needs no product of its own.  Timings and scaling: benchmarks/contact.py; agreement
-with the former dense solver (tests/contact/tang_dense.py) and with CONTACT:
+with the former dense solver (pipeline/validation/references/tang_dense.py) and with CONTACT:
 docs/validation/30_contact.md.
 """
 from __future__ import annotations
