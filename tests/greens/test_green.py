@@ -4,24 +4,14 @@ band-limited correction (pointwise to 6.5 kHz)."""
 import numpy as np
 import pytest
 import scipy.fft as sfft
-from scipy.special import sici
 
 from solvers.greens.kernels import (GreenDecayError, choose_grid, decayed, frequency_grid, green_from_receptance,
                            points_in_band)
 from solvers.wheel.receptance import wheel_receptance
-from pipeline.validation.references.greens import (DT, band_rms, kernel_spectrum, participating_peaks, passivity, pointwise_error, sdof_impulse,
+from pipeline.validation.references.greens import (bandlimit_error, DT, band_rms, kernel_spectrum, participating_peaks, passivity, pointwise_error, sdof_impulse,
                           sdof_receptance, wheel_case)
 
 M, F0, ZETA = 50.0, 500.0, 1e-3
-
-
-def bandlimit_error(k, dt, m):
-    """Leading-order error of Kropp's g[k] for a mass-line tail -1/(m W^2) cut at the
-    Nyquist frequency: 2 dt^2/(pi^2 m) [cos(pi k) - pi k (pi/2 - Si(pi k))], halved at k = 0."""
-    k = np.asarray(k, float)
-    a = np.pi * k
-    e = 2 * dt ** 2 / (np.pi ** 2 * m) * (np.cos(a) - a * (np.pi / 2 - sici(a)[0]))
-    return np.where(k == 0, 0.5 * e, e)
 
 
 def test_sdof_green_matches_impulse_response():

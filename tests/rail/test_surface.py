@@ -91,3 +91,32 @@ def test_unloaded_node_against_the_direct_model():
     G, G_ref = RS.point_amplitudes(S, idx, N).sum(axis=1), T["a"][:, :, 0].sum(axis=1)
     err = np.abs(G - G_ref).max(axis=(1, 2)) / np.abs(G_ref).max(axis=(1, 2))
     assert err.max() < 5e-3, err  # measured 3.5e-3 at 60 Hz, 2e-5 .. 1.4e-3 from 250 Hz to 6.4 kHz
+
+
+# ------------------------------------------------------------------ validation (docs/validation/53_any_rail_point.md)
+# the criteria the fragment states, on the writer's measurements (pipeline.validation.writers.rail_surface: the
+# surface table against the direct construction the greens stage stores, and a mesh with a node between two)
+
+@pytest.fixture(scope="module")
+def surface_writer():
+    from pipeline.validation.make import make_targets
+    from pipeline.validation.writers import rail_surface
+
+    make_targets("rail", "contact", "greens", CASE="default")
+    return rail_surface
+
+
+@pytest.mark.validation
+def test_default_point_from_the_surface_table(surface_writer):
+    d = surface_writer.default_point()
+    assert d["e_G"][d["band"]].max() < 1e-2          # point receptance, f <= 6.5 kHz
+    assert d["e_g"] < 5e-3                           # moving kernel, 4096 lags
+    sims = surface_writer.simulate_both(d["surf"]["rail_kernel"])
+    (L0, f0), (L1, f1) = sims.values()
+    assert abs(L1 - L0) < 0.1 and abs(f1 / f0 - 1) < 1e-3, sims
+
+
+@pytest.mark.validation
+def test_between_nodes_against_a_mesh_with_a_node_there(surface_writer):
+    f, e = surface_writer.between_nodes()
+    assert e[f <= 6500.0].max() < 2e-2, e

@@ -53,6 +53,17 @@ def sdof_impulse(t, m, f0, zeta):
     return np.exp(-zeta * w0 * t) * np.sin(wd * t) / (m * wd)
 
 
+def bandlimit_error(k, dt, m):
+    """Leading-order error of Kropp's g[k] for a mass-line tail -1/(m W^2) cut at the
+    Nyquist frequency: 2 dt^2/(pi^2 m) [cos(pi k) - pi k (pi/2 - Si(pi k))], halved at k = 0."""
+    from scipy.special import sici
+
+    k = np.asarray(k, float)
+    a = np.pi * k
+    e = 2 * dt ** 2 / (np.pi ** 2 * m) * (np.cos(a) - a * (np.pi / 2 - sici(a)[0]))
+    return np.where(k == 0, 0.5 * e, e)
+
+
 # ------------------------------------------------------------------- beam on a damped foundation
 
 # rail-like parameters (UIC60-size beam, pad stiffness and damping per metre)
