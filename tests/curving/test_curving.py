@@ -4,24 +4,11 @@ from __future__ import annotations
 import dataclasses
 import math
 
-import numpy as np
 import pytest
 
-from geometry.contact_point import rigid_contact
-from solvers.curving import CreepLaw, Profiles, Track, Vehicle, flange_edge, solve
-from pipeline.validation.references.curving import linear_bogie, pure_rolling_shift
-from tests.curving.common import cone_pair, metro
-
-RESIDUAL = 1e-8   # "Done when" (4): force and moment residuals / wheel load
-
-
-def independent_conicity(prof, c, r0, l_w, y):
-    """(lam, l0) of the profile pair at wheelset shift y from the project's rigid contact search
-    (geometry.contact_point), not from the solver: lam = (r_o - r_i) / (2 y)."""
-    o = rigid_contact(prof.wheel, prof.rail, c + y)
-    i = rigid_contact(prof.wheel, prof.rail, c - y)
-    return (o.z_wheel - i.z_wheel) / (2 * y), l_w + 0.5 * (o.y_wheel + i.y_wheel)
-
+from solvers.curving import solve
+from pipeline.validation.references.curving import pure_rolling_shift
+from pipeline.validation.references.curving_cases import RESIDUAL, independent_conicity, linear_case, metro
 
 @pytest.mark.parametrize("radius", [600.0, 1000.0, 2000.0])
 def test_free_wheelset_takes_the_pure_rolling_shift(radius):
@@ -42,28 +29,10 @@ def test_free_wheelset_takes_the_pure_rolling_shift(radius):
     assert sol.wheelsets[0].flange == 0
 
 
-def _linear_case(kx, ky, radius):
-    lam, r0, a, f11, f22 = 0.005, 0.45, 1.25, 8e6, 7e6
-    wheel, rail_t = cone_pair(lam)
-    prof = Profiles(wheel, rail_t, flange_edge(wheel))
-    veh = Vehicle(semi_wheelbase=a, bogie_spacing=10.0, wheel_load=10e3, wheelset_mass=1200.0, kx=kx, ky=ky,
-                  box_half_spacing=1.0, secondary_yaw=0.0, cg_height=1.2, r0=r0, rolling_circle=0.75)
-    V = 3.0  # with the balanced cant: no cant deficiency, as the theory assumes
-    trk = Track(radius=radius, cant=1.5 * math.sin(math.atan(V * V / (9.81 * radius))), speed=V, rail_centre=0.75,
-                c=0.0)
-    assert abs(trk.unbalanced()[0]) < 1e-12
-    law = CreepLaw(kind="linear", f11=f11, f22=f22)
-    sol = solve(prof, veh, trk, law)
-    p = rigid_contact(wheel, rail_t, 0.0)
-    r_c, l0 = r0 + p.z_wheel, 0.75 + p.y_track
-    ref = linear_bogie(a, radius, r_c, l0, lam, f11, f22, 2 * kx * 1.0 ** 2, 2 * ky)
-    return sol, ref
-
-
 @pytest.mark.parametrize("kx,ky,radius", [(1e6, 1e6, 5000.0), (5e6, 0.5e6, 8000.0), (0.3e6, 3e6, 6000.0)])
 def test_bogie_matches_the_linear_closed_form(kx, ky, radius):
     """(2) elastic primary yaw, large radius, linear creep, no flange: Boocock/Wickens within 1 %."""
-    sol, (psi1, y1, psi_b, y2) = _linear_case(kx, ky, radius)
+    sol, (psi1, y1, psi_b, y2) = linear_case(kx, ky, radius)
     assert sol.max_residual < RESIDUAL
     lead, trail = sol.wheelsets
     assert lead.flange == 0 and trail.flange == 0
@@ -117,3 +86,13 @@ def test_traction_is_carried_by_the_creep_forces():
     lead, trail = sol.wheelsets
     assert sum(c.force_on_wheel()[0] for c in trail.contacts) == pytest.approx(10e3, rel=0.02)
     assert sum(c.force_on_wheel()[0] for c in lead.contacts) == pytest.approx(10e3, rel=0.05)
+
+
+@pytest.mark.validation
+@pytest.mark.parametrize("curve", ["r150", "y25_r300"])
+def test_both_vehicles_over_the_radius_are_in_equilibrium(curve):
+    """(4) over R = 50 ... 1000 m (docs/validation/90_curving.md, its writer's ``sweep``): every residual
+    below 1e-8 of the wheel load."""
+    from pipeline.validation.writers.curving import sweep
+
+    assert max(sweep(curve)["res"]) < RESIDUAL

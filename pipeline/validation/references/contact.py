@@ -55,3 +55,13 @@ def carter_creepage(c_over_a, p0, mu, direction=1, nu=NU):
     K = 2/G for lateral creepage (anti-plane)."""
     K = 2 * (1 - nu) / G if direction == 1 else 2 / G
     return K * mu * p0 * (1 - c_over_a)
+
+
+def hertz_pressure(a=6e-3, b=4e-3, F3=65e3, d=0.5e-3):
+    """Hertzian pressure on a grid (independent of the NORM solver): p0 sqrt(1 - x^2/a^2 - y^2/b^2)."""
+    x = np.arange(-a + d / 2, a, d)
+    y = np.arange(-b + d / 2, b, d)
+    X, Y = np.meshgrid(x, y, indexing="ij")
+    r = 1 - (X / a) ** 2 - (Y / b) ** 2
+    p = np.sqrt(np.clip(r, 0, None))
+    return p * F3 / (p.sum() * d * d), d

@@ -1,23 +1,20 @@
-"""Steady curving, validation write-up (make validate): the four checks of issue 25 with their
+"""Steady curving, the validation writer (`make validate`): the four checks of issue 25 with their
 numbers, the creep forces against TANG and Kalker's table, the shift and angle of attack over
 the radius for both shipped vehicles, and the C20 metro's bogie in the R = 150 m curve.
-Writes docs/validation/90_curving.md with curving_radius.png and curving_bogie.png."""
+Writes docs/validation/90_curving.md with curving_radius.png and curving_bogie.png; the limits it states
+are asserted by tests/curving/test_curving.py (the checks, the shipped curves' residuals, with
+--validation the residuals of ``sweep`` here) and tests/curving/test_creep.py."""
 from __future__ import annotations
 
 import dataclasses
 import math
-from pathlib import Path
 
-import numpy as np
-import pytest
-
-from pipeline.store.atomic import save_text
 from solvers.curving import solve
-from pipeline.validation.references.curving import pure_rolling_shift
-from tests.curving.test_curving import RESIDUAL, _linear_case, independent_conicity
 
-pytestmark = pytest.mark.validation
-DOCS = Path(__file__).resolve().parents[2] / "docs" / "validation"
+from pipeline.validation.references.curving import pure_rolling_shift
+from pipeline.validation.references.curving_cases import RESIDUAL, independent_conicity, linear_case, metro
+from pipeline.validation.writers import DOCS, pyplot, save_figure, save_fragment
+
 RADII = (50.0, 75.0, 100.0, 150.0, 200.0, 300.0, 500.0, 750.0, 1000.0)
 
 
@@ -31,7 +28,9 @@ def _problem(curve, radius, a_unc=0.5):
     return veh, dataclasses.replace(trk, radius=radius, cant=0.0, speed=V), prof, law
 
 
-def _sweep(curve):
+def sweep(curve):
+    """The curve's vehicle over ``RADII`` (no cant, the speed of ``_problem``): the leading and trailing
+    wheelsets' shift and angle of attack, flange contact and the largest residual per radius."""
     s = dict(R=[], y1=[], y2=[], psi1=[], psi2=[], flange1=[], res=[])
     for R in RADII:
         veh, trk, prof, law = _problem(curve, R)
@@ -43,21 +42,18 @@ def _sweep(curve):
     return s
 
 
-def test_curving_validation_writeup():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+def write() -> str:
     from scipy.optimize import brentq
+
+    pyplot()                                         # the Agg backend before the plots import pyplot
 
     from pipeline.curve.curving import solve_curve
     from postprocess.plots.curving import bogie_in_curve, radius_sweep
     from solvers.curving.creep import kalker_coefficients
     from pipeline.validation.references.kalker import creep_coefficient
-    from tests.curving.common import metro
 
     out = ["## Steady curving (issue 25)", "",
-           "Test: `tests/curving/test_curving_validation.py` (validation suite; the asserted checks are "
+           "Written by `pipeline/validation/writers/curving.py` (`make validate`; the asserted checks are "
            "`tests/curving/test_curving.py` and `tests/curving/test_creep.py`).  The model "
            "(`solvers/curving/`): the quasi-static equilibrium of the leading bogie's two wheelsets (lateral "
            "force, vertical force, roll moment, axle torque, yaw moment each) and its frame (lateral force, yaw "
@@ -86,7 +82,7 @@ def test_curving_validation_writeup():
     rows = ["| k_x, k_y per box (MN/m) | R (m) | psi_1 solver / closed form (mrad) | y_1 (mm) | psi_2 (mrad) | "
             "psi_b (mrad) |", "|---|---|---|---|---|---|"]
     for kx, ky, R in [(1e6, 1e6, 5000.0), (5e6, 0.5e6, 8000.0), (0.3e6, 3e6, 6000.0)]:
-        sol, (p1, y1, pb, y2) = _linear_case(kx, ky, R)
+        sol, (p1, y1, pb, y2) = linear_case(kx, ky, R)
         L, T = sol.wheelsets
         cell = lambda a, b, s=1e3: f"{s * a:.4f} / {s * b:.4f} ({100 * (a / b - 1):+.2f} %)"  # noqa: E731
         rows.append(f"| {kx / 1e6:g}, {ky / 1e6:g} | {R:g} | {cell(L.psi, p1)} | {cell(L.y, y1)} | "
@@ -134,19 +130,14 @@ def test_curving_validation_writeup():
             "pure lateral creepage, within 0.08 mu N with longitudinal creepage and a tread spin of 0.3 1/m "
             "(`tests/curving/test_creep.py`).", "", *rows, ""]
     # (4) residuals, sweep, shipped curves
-    series = {"c20_metro (BV50 worn)": _sweep("r150"), "y25_freight (BV50 new, 1:40 cone)": _sweep("y25_r300")}
+    series = {"c20_metro (BV50 worn)": sweep("r150"), "y25_freight (BV50 new, 1:40 cone)": sweep("y25_r300")}
     worst = max(max(s["res"]) for s in series.values())
     shipped = {n: solve_curve(n) for n in ("r150", "r300", "r100_cant", "y25_r300")}
     worst = max(worst, *(s.max_residual for s in shipped.values()))
     assert worst < RESIDUAL
-    DOCS.mkdir(parents=True, exist_ok=True)
-    fig = radius_sweep(series)
-    fig.savefig(DOCS / "curving_radius.png", dpi=90)
-    plt.close(fig)
+    save_figure(radius_sweep(series), DOCS / "curving_radius.png", dpi=90)
     s = shipped["r150"]
-    fig = bogie_in_curve(s.solution, s.vehicle_model, s.track, s.profiles)
-    fig.savefig(DOCS / "curving_bogie.png", dpi=90)
-    plt.close(fig)
+    save_figure(bogie_in_curve(s.solution, s.vehicle_model, s.track, s.profiles), DOCS / "curving_bogie.png", dpi=90)
     rows = ["| R (m) | " + " | ".join(f"{r:g}" for r in RADII) + " |", "|---" * (len(RADII) + 1) + "|"]
     for name, sr in series.items():
         rows.append(f"| {name}: y_1 (mm) | " + " | ".join(f"{1e3 * v:.1f}" for v in sr["y1"]) + " |")
@@ -165,4 +156,8 @@ def test_curving_validation_writeup():
             f"contact (flange Y/Q = {w['a1o'].nadal:.2f}, Nadal's limit {w['a1o'].nadal_limit:.2f} at "
             f"{math.degrees(w['a1o'].flange_angle):.0f} deg).", "",
             "![the bogie in the curve and its four contacts](validation/curving_bogie.png)", ""]
-    save_text("\n".join(out) + "\n", DOCS / "90_curving.md")
+    return save_fragment("90_curving.md", "\n".join(out) + "\n")
+
+
+if __name__ == "__main__":
+    write()
