@@ -198,3 +198,15 @@ def transient_run(law_or_mu, contact=None):
         mz = float((X * st.p2 - Y * st.p1).sum() * DX * DY * 1e3)
         out.append((st.F1 / scale, st.F2 / scale, mz, int(st.stick.sum())))
     return np.array(out)
+
+
+def deviations(ours, ref):
+    """Per case: the largest force component's deviation relative to the creep force |(FX, FY)|
+    (CONTACT's, normalised by fstat FN), and |Mz - Mz_CONTACT| relative to the curve's largest
+    |Mz| (the moment passes through zero along the curves)."""
+    ref = np.asarray(ref)
+    force = np.abs(ours[:, :2] - ref[:, :2]).max(axis=1) / np.hypot(ref[:, 0], ref[:, 1])
+    mz_scale = np.repeat([np.abs(ref[k:k + len(CREEP), 2]).max() for k in range(0, len(ref), len(CREEP))],
+                         len(CREEP))
+    mz = np.abs(ours[:, 2] - ref[:, 2]) / np.maximum(mz_scale, 1.0)
+    return force, mz
