@@ -17,20 +17,9 @@ import pytest
 
 from pipeline.config.contact_plane import RAIL_MATRICES, WHEEL_MATRICES, project_greens
 from solvers.contact.frame import normal_preload, project_receptance, project_shapes, rotation, to_structure
-from solvers.greens.kernels import choose_grid, frequency_grid, green_from_receptance
-from solvers.wheel.receptance import wheel_receptance
-from pipeline.validation.references.greens import DT, kernel_spectrum, pointwise_error, wheel_case
-
-ANGLE = math.radians(-21.0)      # a gauge-corner-like contact angle (tread contacts: a few degrees)
-
-
-def tilted_directions(angle):
-    """e2' (lateral tangent) and e3' (normal) in SPEC directions (2, 3-down), from the geometry of
-    a surface rising toward the field side with slope tan(angle): upward normal (-sin, -cos) in
-    (2, 3-down), so the normal into the rail is (sin, cos); the tangent toward the field side is
-    (cos, -sin) (up is -3)."""
-    return np.array([math.cos(angle), -math.sin(angle)]), np.array([math.sin(angle), math.cos(angle)])
-
+from solvers.greens.kernels import choose_grid, frequency_grid
+from pipeline.validation.references.greens import DT, pointwise_error, wheel_case
+from pipeline.validation.references.two_point import ANGLE, projected_kernel, tilted_directions
 
 def test_rotation_by_zero_is_exact():
     rng = np.random.default_rng(3)
@@ -79,25 +68,15 @@ def test_projected_kernel_reproduces_the_receptance_along_the_tilted_directions(
     along e2', e3', pointwise to 0.2 % up to 6.5 kHz (the unprojected kernel's accuracy, 0.1 %):
     G22', G33' entrywise, the 2x2 matrix in the Frobenius norm."""
     w, n_t, f = c20
-    G = wheel_receptance(f, w["f_hz"], w["modal_mass"], w["n"], w["phi"], w["zeta"])
-    g = green_from_receptance(G, DT, n_t, band_limit=6500.0)
-    gp = project_receptance(g, ANGLE)
-    e2, e3 = tilted_directions(ANGLE)
-    phi_t = np.column_stack([w["phi"] @ e2, w["phi"] @ e3])         # shapes along the tilted directions
-    Gt = wheel_receptance(f, w["f_hz"], w["modal_mass"], w["n"], phi_t, w["zeta"])
-    np.testing.assert_allclose(project_shapes(w["phi"], ANGLE), phi_t, rtol=0, atol=1e-15)
-    Gd = kernel_spectrum(gp, n_t)
-    band = (f >= 5.0) & (f <= 6500.0)
+    k = projected_kernel(w, n_t, f)
+    G, Gt, Gd, band, err, err0 = (k[n] for n in ("G", "Gt", "Gd", "band", "err", "err0"))
+    np.testing.assert_allclose(project_shapes(w["phi"], ANGLE), k["phi_t"], rtol=0, atol=1e-15)
     # entrywise where the entry is not near a zero of its own; as a matrix everywhere (a projected
     # cross term G23' passes through zero where the 0.1 % error of G22, G33 is large against it)
     for i, j in ((0, 0), (1, 1)):
         (e2k, _), (e65, f65) = pointwise_error(f, Gd[:, i, j], Gt[:, i, j])
         assert e2k < 2e-3 and e65 < 2e-3, (i, j, e2k, e65, f65)
-    err = np.linalg.norm(Gd[band] - Gt[band], axis=(1, 2)) / np.linalg.norm(Gt[band], axis=(1, 2))
-    err0 = (np.linalg.norm(kernel_spectrum(g, n_t)[band] - G[band], axis=(1, 2))
-            / np.linalg.norm(G[band], axis=(1, 2)))
     assert err.max() < 2e-3, err.max()
     np.testing.assert_allclose(err, err0, rtol=1e-6, atol=1e-12)   # the same error as unprojected
     # the projection mixes the directions: the tilted G22' is not G22
     assert np.median(np.abs(Gt[band, 0, 0] / G[band, 0, 0] - 1.0)) > 0.1
-    test_projected_kernel_reproduces_the_receptance_along_the_tilted_directions.error = float(err.max())
