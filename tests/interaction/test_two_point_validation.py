@@ -49,7 +49,7 @@ def test_screen_and_loop_agree_at_every_position(writer, case):
 
 
 def test_flange_case(writer):
-    fl = writer.flange_case(writer.default_case()["kw"])
+    fl = writer.flange_case()
     cf, sf, stf = fl["cf"], fl["sf"], fl["stf"]
     da, db = float(cf["contact_angle"]), float(cf["b_contact_angle"])
     Na, Nb = (float(x) for x in sf["N_static"])

@@ -84,16 +84,21 @@ def unit_numbers() -> dict:
     return dict(r1=r1, r2=r2, s1=s1, s2=s2, k_err=k_err)
 
 
+def default_kw() -> dict:
+    """The default case's time-loop settings."""
+    c = case_settings("default")
+    return dict(dt=c["time"]["dt"], v=c["kinematics"]["speed"], gamma_y=c["kinematics"]["gamma_y"],
+                preload=c["loading"]["preload"], duration=c["time"]["duration"], store_every=10)
+
+
 def default_case() -> dict:
     """The default case through the two-point loop with a never-reached second point, 8 s, its own
     greens and contact, beside the one-point loop."""
     con, gr = load("default", "contact"), load("default", "greens")
-    c = case_settings("default")
     w = WheelModes(gr["wheel_f"], gr["wheel_mass"], gr["wheel_zeta"], gr["wheel_phi"])
-    cm = contact_model(con, c["friction"]["mu"])
+    cm = contact_model(con, case_settings("default")["friction"]["mu"])
     g = gr["rail_kernel"]
-    kw = dict(dt=c["time"]["dt"], v=c["kinematics"]["speed"], gamma_y=c["kinematics"]["gamma_y"],
-              preload=c["loading"]["preload"], duration=c["time"]["duration"], store_every=10)
+    kw = default_kw()
     one = simulate(w, g, cm, **kw)
     two = simulate_two(w, (g, 0.5 * g, 0.5 * g, g), cm, SecondPoint(cm, w.phi[:, ::-1].copy(), separation=1e-3),
                        **kw)
@@ -110,7 +115,7 @@ def angle_case() -> dict:
                 preload=case_settings("default")["loading"]["preload"])
 
 
-def flange_case(kw: dict) -> dict:
+def flange_case(kw: dict | None = None) -> dict:
     """The flange case (two patches, each in its contact plane) and its tread patch alone (one-point loop at
     its normal force Q / cos delta_a, the default case's time settings ``kw``)."""
     cf, gf, sf, stf = (load("flange", k) for k in ("contact", "greens", "simulate", "stability"))
@@ -119,7 +124,7 @@ def flange_case(kw: dict) -> dict:
                   / np.abs(gf["rail_kernel_ab"]).max())
     wf = WheelModes(gf["wheel_f"], gf["wheel_mass"], gf["wheel_zeta"], gf["wheel_phi"])
     cmf = contact_model(cf, csf["friction"]["mu"])
-    alone = simulate(wf, gf["rail_kernel_aa"], cmf, **dict(kw, preload=float(cf["preload_normal"])))
+    alone = simulate(wf, gf["rail_kernel_aa"], cmf, **dict(kw or default_kw(), preload=float(cf["preload_normal"])))
     return dict(cf=cf, gf=gf, sf=sf, stf=stf, Q=csf["loading"]["preload"], recip=recip, alone=alone)
 
 
