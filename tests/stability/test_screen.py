@@ -107,9 +107,9 @@ def falling_squealer():
 @pytest.mark.parametrize("extra", [{}, {"gamma_x": 0.004, "spin": 0.5}], ids=["lateral", "traction+spin"])
 def test_screen_carries_the_falling_slope(falling_squealer, extra):
     """A falling slope feeds energy in: the screen's growth rates rise against Coulomb's (the
-    same modes, same creepages) and match those measured in the time loop (matrix pencil, tests/stability/growth.py)
+    same modes, same creepages) and match those measured in the time loop (matrix pencil, pipeline/validation/references/growth.py)
     to 2 %; with traction and spin (both tangential directions, e1 != 0) as well."""
-    from tests.stability.growth import linear_phase, pencil_growth
+    from pipeline.validation.references.growth import linear_phase, pencil_growth
 
     wheel, g, c = falling_squealer
     kw = dict(dt=DT, v=V, gamma_y=GAMMA_Y, preload=PRELOAD, **extra)
