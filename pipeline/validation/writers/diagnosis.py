@@ -4,28 +4,24 @@ For each contact position (cases dy05, dy10, default) and mu = 0.15 .. 0.6 the c
 rate of every candidate (the (n,0,a) modes and the low-frequency wheelset-on-track root), which
 structure moves in the low-frequency root, and its sensitivity to the rail's vertical-lateral
 cross receptance, the suspension damping, the rail's omitted g(0) and the wheel's contact point.
-Needs the three cases' contact and greens artifacts (`make contact greens CASE=dy05` etc.).
+The three cases' contact and greens are built through Make.
 
-    .venv/bin/python -m pytest -q --validation tests/stability/test_diagnosis_report.py
+    .venv/bin/python -m pipeline.validation.writers.diagnosis
+
+A writer, run by `make validate`; what it asserts (the reference's mode leads where the reference names one)
+is asserted by tests/stability/test_diagnosis.py on ``fastest_roots`` here.
 """
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
-import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
-DOCS = ROOT / "docs" / "validation"
+from pipeline.validation.make import ensure_case
+from pipeline.validation.writers import save_fragment
+
+KEYS = ["LF", "(0,0,a)", "(1,0,a)", "(2,0,a)", "(3,0,a)", "(4,0,a)", "(5,0,a)"]
 CASES = {"dy05": -5, "dy10": -10, "default": -15}
 MUS = (0.15, 0.3, 0.45, 0.6)
 GAMMA = -0.014
-
-
-def _need(case):
-    d = ROOT / "build" / "cases" / case
-    if not (d / "greens.npz").exists() or not (d / "contact.npz").exists():
-        pytest.fail(f"build the artifacts first: make contact greens CASE={case}")
 
 
 def _screen(lm, labels):
@@ -64,21 +60,33 @@ def _lf_structure(lm):
     return r, np.abs(rail_receptance_z(lm.rail_kernel, z) @ dF), np.abs(_wheel_z(filt, z) @ dF)
 
 
-@pytest.mark.validation
-def test_diagnosis_report():
+def fastest_roots() -> dict:
+    """(dy_WR mm, mu) -> the candidate with the fastest-growing root (the screen, the case's linear model)."""
+    from pipeline.stages.stability import case_linear_model
+
+    out = {}
+    for case, dy in CASES.items():
+        ensure_case(case)
+        for mu in MUS:
+            _, lm, labels, _ = case_linear_model(case, mu=mu, gamma_y=GAMMA)
+            res = _screen(lm, labels)
+            out[(dy, mu)] = max(res, key=lambda k: res[k].sigma)
+    return out
+
+
+def write() -> str:
     from pipeline.stages.stability import case_linear_model
 
     for case in CASES:
-        _need(case)
-    keys = ["LF", "(0,0,a)", "(1,0,a)", "(2,0,a)", "(3,0,a)", "(4,0,a)", "(5,0,a)"]
+        ensure_case(case)
+    keys = KEYS
     head = _head(keys)
     head5 = _head(keys[:5])
-    base, variants, fastest = [], {"rail": [], "susp": [], "lf": []}, {}
+    base, variants = [], {"rail": [], "susp": [], "lf": []}
     for case, dy in CASES.items():
         for mu in MUS:
             c, lm, labels, _ = case_linear_model(case, mu=mu, gamma_y=GAMMA)
             res = _screen(lm, labels)
-            fastest[(dy, mu)] = max(res, key=lambda k: res[k].sigma)
             base.append(f"| {dy} mm | {mu} | {_row(res, keys)} |")
             K = lm.rail_kernel.copy()
             K[:, 0, 1] *= 0.3
@@ -92,14 +100,10 @@ def test_diagnosis_report():
             r, xr, xw = struct
             variants["lf"].append(f"| {dy} mm | {r.f_hz:.1f} Hz, {r.sigma:+.1f}/s | {1e9 * xr[0]:.1f} / {1e9 * xr[1]:.1f} "
                                   f"| {1e9 * xw[0]:.1f} / {1e9 * xw[1]:.1f} |")
-    # the reference's mode leads wherever the reference names one (thesis ch. 6): (2,0,a) at -5 mm up to
-    # mu = 0.45 (the low-frequency root above), (3,0,a) at -10 mm, (2,0,a) at -15 mm from mu = 0.3
-    assert all(fastest[(-5, mu)] == "(2,0,a)" for mu in MUS if mu <= 0.45) and fastest[(-5, 0.6)] == "LF"
-    assert all(fastest[(-10, mu)] == "(3,0,a)" for mu in MUS)
-    assert all(fastest[(-15, mu)] == "(2,0,a)" for mu in MUS if mu >= 0.3)
     text = f"""## Fidelity diagnosis: which mode grows at each contact position (issue 13)
 
-Test: `tests/stability/test_diagnosis_report.py` (validation suite). The stability screen
+Written by `pipeline/validation/writers/diagnosis.py` (`make validate`); asserted by
+`tests/stability/test_diagnosis.py`. The stability screen
 (`solvers/stability/screen.py`, `make stability`) linearises the time loop about steady rolling; its growth rates
 match those measured in the time loop's growth phase (reduced squealer: 8.38 / 8.36 1/s for (2,0,a),
 14.74 / 14.74 1/s for (3,0,a), `tests/stability/test_screen.py`; default case: (2,0,a) +7.90, (3,0,a)
@@ -176,5 +180,8 @@ Findings (evidence above; what they mean for the model):
   the map. Done since: y^W mirrored ("Contact positions"), the C20 refitted to coupling zero points and
   the suspension damping calibrated in place of the rail support's rocking stiffness ("Calibration").
 """
-    DOCS.mkdir(parents=True, exist_ok=True)
-    (DOCS / "65_fidelity_diagnosis.md").write_text(text)
+    return save_fragment("65_fidelity_diagnosis.md", text)
+
+
+if __name__ == "__main__":
+    write()
