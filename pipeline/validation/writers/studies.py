@@ -1,10 +1,11 @@
-"""Validation report of the studies (pipeline/study_*.py, solvers/study.py): measured numbers
-and a plot for docs/validation/80_studies.md and docs/validation/studies_damping.png.
+"""Validation of the studies (pipeline/study/, solvers/study.py): measured numbers and a plot for
+docs/validation/80_studies.md and docs/validation/studies_damping.png.
 
-    OMP_NUM_THREADS=1 .venv/bin/python -m tests.study.test_validation_report   # ~1 min
+    OMP_NUM_THREADS=1 .venv/bin/python -m pipeline.validation.writers.studies   # a few min
 
-Also run by `pytest --validation` (the test below is marked 'validation').  Needs the three
-positions' case artifacts (built here through the CLI when missing, as `make study` does).
+A writer, run by `make validate`; the limits it states are asserted by tests/study/test_studies_validation.py
+on ``map_vs_simulate`` and ``damping_vs_linear`` here.  The three positions' case artifacts are built
+through Make.
 
 1. The study runner against the simulate stage: a one-point map per contact position at the
    case's own operating point, run as a study (Dask workers, the results table, the CSV round
@@ -12,24 +13,21 @@ positions' case artifacts (built here through the CLI when missing, as `make stu
 2. The squeal-critical damping by bisection (the damping study's procedure on the time loop)
    against an independent linear estimate: one lightly damped axial mode on the analytic beam
    rail with the analytic Hertz contact, where the single-mode growth rate in full slip
-   (tests.interaction.single_mode_growth, frequency domain) crosses zero.
+   (``references.interaction.single_mode_growth``, frequency domain) crosses zero.
 """
 from __future__ import annotations
 
 import csv
 import math
-import subprocess
-import sys
 import tempfile
 from pathlib import Path
 
 import numpy as np
-import pytest
 
-from tests.study.conftest import ROOT, ensure_case
-from tests.study.test_damping_bisection import linear_critical_damping, run_procedure
+from pipeline.validation.make import ensure_case, make_targets
+from pipeline.validation.references.damping import linear_critical_damping, run_procedure
+from pipeline.validation.writers import DOCS, pyplot, save_figure, save_fragment
 
-DOCS = ROOT / "docs" / "validation"
 CASES = ("dy05", "dy10", "default")
 VARIANTS = [  # (label, f_r Hz, modal mass kg, (Phi_2, Phi_3), mu)
     ("(3,0,a)-like, Phi_3/Phi_2 = -0.15, mu = 0.35", 1161.0, 35.0, (1.0, -0.15), 0.35),
@@ -56,7 +54,7 @@ def map_vs_simulate() -> tuple[list, list]:
         try:
             sims[case] = artifacts.load_npz(path, "simulate", cfg)[0]
         except artifacts.ArtifactError:
-            subprocess.run([sys.executable, "-m", "pipeline", "simulate", "--case", case, "-q"], cwd=ROOT, check=True)
+            make_targets("simulate", CASE=case)
             sims[case] = artifacts.load_npz(path, "simulate", cfg)[0]
     rows = []
     with tempfile.TemporaryDirectory() as d:
@@ -90,33 +88,23 @@ def map_vs_simulate() -> tuple[list, list]:
 
 
 def damping_vs_linear(plot: bool = True) -> tuple[list, list]:
-    import tests.study.test_damping_bisection as B
     from pipeline.validation.references.interaction import DT, V, beam_kernel, hertz_contact
 
     g = beam_kernel(DT, V)
     out, lines, logs = [], [], []
-    saved = (B.F_R, B.MASS, B.PHI, B.MU)
-    try:
-        for label, f, m, phi, mu in VARIANTS:
-            B.F_R, B.MASS, B.PHI, B.MU = f, m, phi, mu
-            c = hertz_contact(mu)
-            zc = linear_critical_damping(c)
-            res, log = run_procedure(c, g, rel_tol=0.02)
-            s = res.steps[0]
-            mid = math.sqrt(s.zeta_lo * s.zeta_hi) if np.isfinite(s.zeta_hi) else float("nan")
-            out.append(dict(label=label, zc=zc, lo=s.zeta_lo, hi=s.zeta_hi, dev=mid / zc - 1, runs=s.runs,
-                            end=res.end, L0=s.L_F2, f0=s.f_dominant))
-            logs.append(log)
-            lines.append(f"| {label} | {s.L_F2:.1f} dB at {s.f_dominant:.0f} Hz | {zc:.3e} | {s.zeta_lo:.3e} .. "
-                         f"{s.zeta_hi:.3e} | {100 * (mid / zc - 1):+.1f} % | {s.runs} | {res.end} |")
-    finally:
-        B.F_R, B.MASS, B.PHI, B.MU = saved
+    for label, f, m, phi, mu in VARIANTS:
+        c = hertz_contact(mu)
+        zc = linear_critical_damping(c, f, m, phi, mu)
+        res, log = run_procedure(c, g, 0.02, f, m, phi)
+        s = res.steps[0]
+        mid = math.sqrt(s.zeta_lo * s.zeta_hi) if np.isfinite(s.zeta_hi) else float("nan")
+        out.append(dict(label=label, zc=zc, lo=s.zeta_lo, hi=s.zeta_hi, dev=mid / zc - 1, runs=s.runs,
+                        end=res.end, L0=s.L_F2, f0=s.f_dominant))
+        logs.append(log)
+        lines.append(f"| {label} | {s.L_F2:.1f} dB at {s.f_dominant:.0f} Hz | {zc:.3e} | {s.zeta_lo:.3e} .. "
+                     f"{s.zeta_hi:.3e} | {100 * (mid / zc - 1):+.1f} % | {s.runs} | {res.end} |")
     if plot:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-
+        plt = pyplot()
         fig, ax = plt.subplots(figsize=(8, 4))
         for k, (o, log) in enumerate(zip(out, logs)):
             z = [x[0] for x in log[1:]]            # the bisection runs (the first is the nominal full model)
@@ -129,8 +117,7 @@ def damping_vs_linear(plot: bool = True) -> tuple[list, list]:
         ax.legend(fontsize=7)
         ax.grid(alpha=0.3, which="both")
         fig.tight_layout()
-        fig.savefig(DOCS / "studies_damping.png", dpi=90)
-        plt.close(fig)
+        save_figure(fig, DOCS / "studies_damping.png", dpi=90)
     return out, lines
 
 
@@ -139,8 +126,8 @@ def write_report() -> tuple[str, list, list]:
     damp, dlines = damping_vs_linear()
     text = f"""## Studies (SPEC 7)
 
-Generated by `tests/study/test_validation_report.py` (`OMP_NUM_THREADS=1 .venv/bin/python -m
-tests.study.test_validation_report`, also `pytest --validation`). Modules: `pipeline/study_*.py` (runner, study
+Written by `pipeline/validation/writers/studies.py` (`make validate`; asserted by
+`tests/study/test_studies_validation.py`). Modules: `pipeline/study/` (runner, study
 kinds), `solvers/study.py` (procedure, numerics); fast tests in `tests/study/` (among them the kill/restart test of
 the runner: a study killed with SIGKILL mid-way and restarted gives the table of an uninterrupted run, every case
 once); timings in docs/benchmarks.md ("Studies").
@@ -161,10 +148,10 @@ round-trip through the table at repr precision).
 ### Squeal-critical damping: bisection vs the linear estimate
 
 The damping study's procedure (`solvers.study.damping_procedure`) on the time loop, for one lightly damped axial
-mode on the analytic beam rail with the analytic Hertz contact (tests/interaction), gamma_y = -0.014 (full
+mode on the analytic beam rail with the analytic Hertz contact (`pipeline/validation/references/damping.py`), gamma_y = -0.014 (full
 slip): squeal = L_F2 >= 10 dB within 8 s of rolling from the default kick; geometric bisection from the mode's
 damping 1e-4 to 0.1 until zeta_hi / zeta_lo - 1 <= 0.02. The independent estimate: the damping at which the
-single-mode linear growth rate in full slip (`tests.interaction.single_mode_growth`, frequency domain, rail point
+single-mode linear growth rate in full slip (`references.interaction.single_mode_growth`, frequency domain, rail point
 receptance and contact stiffness at the mode's frequency) crosses zero.
 
 | mode | nominal run (zeta = 1e-4) | linear estimate | bisection bracket | bracket vs estimate | runs | procedure ended |
@@ -182,17 +169,9 @@ just below the critical damping the motion grows too slowly to reach 10 dB withi
     return text, same, damp
 
 
-@pytest.mark.validation
-def test_validation_report():
-    text, same, damp = write_report()
-    assert all(same), same
-    for d in damp:
-        assert d["end"].startswith("quiet") and d["hi"] / d["lo"] - 1 <= 0.02, d
-        assert abs(d["dev"]) < 0.15, d
-    (DOCS / "80_studies.md").write_text(text)
+def write() -> str:
+    return save_fragment("80_studies.md", write_report()[0])
 
 
 if __name__ == "__main__":
-    t, *_ = write_report()
-    (DOCS / "80_studies.md").write_text(t)
-    print(t)
+    write()
