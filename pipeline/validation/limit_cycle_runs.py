@@ -227,10 +227,67 @@ def save_csv(path: Path, rows: list[dict]) -> None:
             w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
 
 
+TABLES = ("cycles.csv", "compliance.csv", "scan.csv", "slices.csv", "curve.csv", "growth.csv", "knees.csv",
+          "coupling.csv")
+
+
+def run_key() -> dict:
+    """What the tables depend on: the code ``main`` reaches (``pipeline.store.code_hash``), the map study's
+    file (its simulation settings) and the cases' contact and greens artifacts (size and time: a rebuilt
+    artifact is a new input)."""
+    from pipeline.store.code_hash import code_key
+
+    files = [paths.ROOT / "pipeline" / "studies" / "map.toml"]
+    files += [paths.case_dir(c) / f"{n}.npz" for c in CASES for n in ("contact", "greens")]
+    return {"code": code_key("pipeline.validation.limit_cycle_runs:main"),
+            "inputs": {str(f): [f.stat().st_size, f.stat().st_mtime_ns] for f in files}}
+
+
+def tables() -> Path:
+    """The folder of the tables (build/studies/limit-cycle/), run again (``main``) when they are missing or
+    their key (``run_key``) changed; the cases' contact and greens are built through Make first.  One run
+    at a time (a lock file): a second caller waits and then finds them up to date."""
+    import fcntl
+    import json
+
+    from pipeline.validation.make import ensure_case
+
+    for case in CASES:
+        ensure_case(case)
+    out = out_dir()
+    out.mkdir(parents=True, exist_ok=True)
+    with open(out / ".lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        key = out / "key.json"
+        fresh = key.exists() and json.loads(key.read_text()) == run_key() and all((out / t).exists() for t in TABLES)
+        if not fresh:
+            log.info("limit-cycle tables missing or stale: running them (%s)", out)
+            _run()
+    return out
+
+
 def main() -> int:
-    from pipeline.validation.limit_cycle_doc import write_doc
+    """Run the tables and write docs/validation/68_limit_cycle.md (always; ``tables()`` reuses them)."""
+    import fcntl
+
+    from pipeline.validation.make import ensure_case
 
     logging.basicConfig(level=logging.INFO, format="%(levelname)s %(name)s: %(message)s")
+    for case in CASES:
+        ensure_case(case)
+    out_dir().mkdir(parents=True, exist_ok=True)
+    with open(out_dir() / ".lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        _run()
+    return 0
+
+
+def _run() -> None:
+    import json
+
+    from pipeline.store.atomic import save_text
+    from pipeline.validation.limit_cycle_doc import write_doc
+
     t0 = time.perf_counter()
     sim = simulation()
     out = out_dir()
@@ -251,8 +308,8 @@ def main() -> int:
     save_csv(out / "knees.csv", knees())
     save_csv(out / "coupling.csv", coupling())
     write_doc(cycles, records, comp, sc, sl, curves)
+    save_text(json.dumps(run_key(), indent=1), out / "key.json")
     log.info("limit cycle study in %.0f s -> %s, docs/validation/68_limit_cycle.md", time.perf_counter() - t0, out)
-    return 0
 
 
 if __name__ == "__main__":
