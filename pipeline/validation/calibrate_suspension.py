@@ -38,8 +38,9 @@ VERTICAL = ("bounce", "roll")
 def lf_growth(case: str, c_ratio: float, mu: float, gammas) -> float:
     """Fastest growth rate (1/s) of a low-frequency (track) root over ``gammas`` at friction
     ``mu`` with the vertical suspension damping scaled by ``c_ratio``; -inf when none."""
-    from pipeline.store import artifacts
+    from pipeline.caches.friction_curves import with_curves
     from pipeline.stages.stability import case_linear_model
+    from pipeline.store import artifacts
     from pipeline.study.screen import grid_roots
 
     c, lm, _, _ = case_linear_model(case)
@@ -47,6 +48,7 @@ def lf_growth(case: str, c_ratio: float, mu: float, gammas) -> float:
     zeta = np.array(lm.zeta, float)
     zeta[np.isin(np.asarray(modes["kind"]).astype(str), VERTICAL)] *= c_ratio
     con, _ = artifacts.load_npz(paths.case_dir(case) / "contact.npz", "contact")
+    con = with_curves(case, con, [mu])           # the curve at mu: contact.npz holds the case's own friction's
     grid = grid_roots(lm._replace(zeta=zeta), con, c["kinematics"]["speed"], gammas, [mu])
     return max([-np.inf] + [r.sigma for _, _, roots in grid for r in roots if r.mode < 0])
 

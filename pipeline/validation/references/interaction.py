@@ -1,8 +1,8 @@
 """The in-memory cases of the interaction checks (tests/interaction/, the validation writers,
 benchmarks/), independent of the pipeline's greens stage:
 
-* ``default_contact(mu)``: the contact of the default case (build/cases/default/contact.npz)
-  when it exists, else ``hertz_contact``: an analytic Hertzian table F3 = K approach^1.5, a
+* ``default_contact(mu)``: the contact of the default case (build/cases/default/contact.npz, a
+  friction curve at another mu through the case's curve cache) when it exists, else ``hertz_contact``: an analytic Hertzian table F3 = K approach^1.5, a
   constant compliance and a smooth friction curve of the same size (65 kN, mu_RF reaching mu
   near s = 0.1 m/s);
 * ``c20_modes(select)``: the C20's modal data at y^W = -32 mm (``references.greens.wheel_case``: the
@@ -51,9 +51,14 @@ def hertz_contact(mu: float = MU, F_L: float = PRELOAD) -> ContactModel:
 
 
 def default_contact(mu: float = MU) -> ContactModel:
+    """The default case's contact at friction ``mu``: its curve from contact.npz (the case's own mu) or from
+    the case's friction-curve cache (``pipeline.caches.friction_curves.with_curves``: built on the artifact's
+    static contact once, then read); ``hertz_contact`` without the artifact."""
     if CONTACT.exists():
+        from pipeline.caches.friction_curves import with_curves
+
         with np.load(CONTACT) as d:
-            return contact_model({k: d[k] for k in d.files}, mu)
+            return contact_model(with_curves("default", d, [mu]), mu)
     return hertz_contact(mu)
 
 

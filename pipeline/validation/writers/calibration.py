@@ -1,5 +1,7 @@
 """What is calibrated, to what, and the checks each calibration was not fitted to (issue 13):
-docs/validation/23_calibration.md (make validate; needs the map cases' contact and greens).
+docs/validation/23_calibration.md (a writer, run by `make validate`; the map cases' contact and greens built
+through Make).  What it states as checked is asserted by tests/validation/test_calibration.py on
+``measure()``.
 
 * C20 section (pipeline/validation/calibrate_wheel.py): fitted to the 34 reference eigenfrequencies and to the
   coupling zero points of the (2,0,a) and (3,0,a) modes (targets from pipeline/validation/calibrate_coupling.py).
@@ -13,18 +15,13 @@ docs/validation/23_calibration.md (make validate; needs the map cases' contact a
 """
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
-import pytest
 
-from pipeline.store.artifacts import atomic_write
+from pipeline.validation.make import ensure_case
+from pipeline.validation.references.greens import DATA
+from pipeline.validation.writers import save_fragment
 
-ROOT = Path(__file__).resolve().parents[2]
-DOCS = ROOT / "docs" / "validation"
-REF = ROOT / "tests" / "reference" / "c20_modes.csv"
-
-pytestmark = pytest.mark.validation
+REF = DATA / "c20_modes.csv"
 
 
 def _ratio_line(modes, p, label, ys):
@@ -51,7 +48,10 @@ def _levels(modes, p, y, f):
     return db(G[:, 1, 1]), db(G[:, 0, 1])
 
 
-def test_calibration_report():
+def measure() -> dict:
+    """The calibrations' targets and checks: the C20's frequencies against Table 4.1, the coupling zero points
+    of (2,0,a) and (3,0,a), the receptance levels at the three contact points, the low-frequency growth at
+    -5 mm (mu 0.40 and 0.45) and -10 mm (mu 0.45-0.60)."""
     from pipeline.store import artifacts, paths
     from pipeline.validation.calibrate_suspension import CASE, MU_LOUD, MU_QUIET, lf_growth
     from pipeline.validation.calibrate_wheel import TARGETS, tread_ratio
@@ -61,11 +61,12 @@ def test_calibration_report():
     from postprocess.modes.reference import match_modes, summary
     from solvers.constants import THESIS_CONTACT_POINTS_FIELD
 
+    for case in ("dy05", "dy10"):
+        ensure_case(case)
     p, _ = load_wheel("c20")
     modes, _ = artifacts.load_npz(paths.wheel_dir("c20") / "modes.npz", "wheel-modes", p,
                                   make_target="modes WHEEL=c20")
     s = summary(match_modes(reference_rows(REF), modes["f_hz"], modes["n"], modes["m"], modes["cls"]))
-    assert s["found"] == 34 and s["max_abs"] <= 0.05, s                        # issue 13: all labels, 5 %
 
     ys = np.linspace(-0.040, 0.032, 10)
     zero_rows = []
@@ -76,23 +77,29 @@ def test_calibration_report():
         zero_rows.append(f"| ({label[0]},{label[1]},{label[2]}) | 0 at {1e3 * y0:+.0f} mm | "
                          f"{tread_ratio(modes, p, y0, label):+.3f} | {1e3 * z:+.1f} | "
                          + ", ".join(f"{v:+.3f}" for v in r[[3, 5, 7, 9]]) + " |")
-        # the least-squares compromise with the frequencies: within 4 mm of the target
-        assert abs(z - y0) <= 0.004, (label, z, y0)
-    assert zeros[(3, 0, "a")] > zeros[(2, 0, "a")]     # (3,0,a) rotates about a point nearer the field side
 
     f = np.geomspace(100.0, 6500.0, 4000)
     points = sorted(y for y, _ in THESIS_CONTACT_POINTS_FIELD.values())
     lev = {y: _levels(modes, p, y, f) for y in points}
     g23 = {y: v[1] for y, v in lev.items()}
     g33 = [v[0] for v in lev.values()]
-    assert max(g23, key=g23.get) == max(points)                                # Fig. 4.4 (c): strongest at -15 mm
     spread33 = max(g33) - min(g33)     # Fig. 4.4 (a): "hardly any differences" -- reported, not met (below)
 
     spec, _ = load_study("map")
     gammas, _ = grid_of(spec, quick=False)
     quiet, loud = lf_growth(CASE, 1.0, MU_QUIET, gammas), lf_growth(CASE, 1.0, MU_LOUD, gammas)
     dy10 = max(lf_growth("dy10", 1.0, mu, gammas) for mu in (0.45, 0.5, 0.55, 0.6))
-    assert quiet <= 0.05 and loud > 0.0, (quiet, loud)
+    return dict(p=p, s=s, zeros=zeros, zero_rows=zero_rows, points=points, g23=g23, g33=g33, spread33=spread33,
+                quiet=quiet, loud=loud, dy10=dy10)
+
+
+def write() -> str:
+    from pipeline.validation.calibrate_suspension import MU_LOUD, MU_QUIET
+
+    m = measure()
+    p, s, zero_rows, points, g23, g33, spread33 = (m[k] for k in ("p", "s", "zero_rows", "points", "g23", "g33",
+                                                                  "spread33"))
+    quiet, loud, dy10 = m["quiet"], m["loud"], m["dy10"]
     c_v = p["suspension"]["c_vertical"]
 
     text = f"""## Calibration: what is fitted, to what, and what it was not fitted to
@@ -150,5 +157,8 @@ reference: none). This is not a damper rating: it is 10-20 times a hydraulic pri
 stands in for all damping of the wheelset's vertical motion at 60-90 Hz that the half-wheelset model
 leaves out (the other wheel on its rail and pad, the rubber springs' losses, the bogie frame).
 """
-    with atomic_write(DOCS / "23_calibration.md") as tmp:
-        tmp.write_text(text)
+    return save_fragment("23_calibration.md", text)
+
+
+if __name__ == "__main__":
+    write()
