@@ -13,11 +13,9 @@ import numpy as np
 import pytest
 
 from geometry.mesher import mesh_section, read_msh
-from geometry.outline import Segment
 from pipeline.validation.references.free_disc import free_disc_nondimensional
+from pipeline.validation.references.plates import DISC_A as A, DISC_H as H, E, NU, RHO, disc_segments
 
-A, H = 0.2, 0.002
-E, NU, RHO = 210e9, 0.3, 7850.0
 
 
 def test_free_disc_reference_values():
@@ -33,15 +31,7 @@ def test_free_disc_reference_values():
 def disc(tmp_path_factory):
     from solvers.wheel.axisym import HarmonicSolver
 
-    nl, nt = 30, 2
-    r = np.linspace(0, A, nl + 1)
-    z = np.linspace(0, H, nt + 1)
-    segs = [
-        Segment("bottom", np.column_stack([r, np.zeros_like(r)]), A / nl),
-        Segment("edge", np.column_stack([np.full_like(z, A), z]), H / nt),
-        Segment("top", np.column_stack([r[::-1], np.full_like(r, H)]), A / nl),
-        Segment("axis", np.column_stack([np.zeros_like(z), z[::-1]]), H / nt),
-    ]
+    segs = disc_segments()
     path = os.path.join(tmp_path_factory.mktemp("disc"), "disc.msh")
     names = mesh_section(segs, path)
     mesh, _, ft = read_msh(path)

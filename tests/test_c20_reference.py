@@ -2,14 +2,14 @@
 thesis Table 4.1, pipeline/validation/references/data/c20_modes.csv): every listed mode found
 with its label, (n, 0, a) for n = 0..8 within 3 %, median within 5 %, none
 worse than 10 %."""
-from pathlib import Path
-
 import pytest
 
 from pipeline.stages.wheel import load_wheel, modes_for_parameters, reference_rows
 from postprocess.modes.reference import match_modes, summary
 
-REF = Path(__file__).parent / "reference" / "c20_modes.csv"
+from pipeline.validation.references.greens import DATA
+
+REF = DATA / "c20_modes.csv"
 
 
 @pytest.fixture(scope="module")

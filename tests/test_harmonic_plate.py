@@ -24,27 +24,10 @@ import numpy as np
 import pytest
 
 from geometry.mesher import mesh_section, read_msh
-from geometry.outline import Segment
 from pipeline.validation.references.annular_plate import annular_plate_frequencies
+from pipeline.validation.references.plates import A, B, E, H, NU, RHO, plate_segments
 
-A, B, H = 0.4, 0.1, 0.004
-E, NU, RHO = 210e9, 0.3, 7850.0
-N_THICK = 2  # elements through the thickness
-L_ELEM = 3.5 * H  # element length along the radius
 TOL = 0.01  # relative, against Kirchhoff
-
-
-def plate_segments():
-    zt = np.linspace(0.0, H, N_THICK + 1)
-    nl = int(round((A - B) / L_ELEM))
-    rl = np.linspace(B, A, nl + 1)
-    st = H / N_THICK
-    return [
-        Segment("inner", np.column_stack([np.full(N_THICK + 1, B), zt[::-1]]), st),
-        Segment("bottom", np.column_stack([rl, np.zeros(nl + 1)]), L_ELEM),
-        Segment("outer", np.column_stack([np.full(N_THICK + 1, A), zt]), st),
-        Segment("top", np.column_stack([rl[::-1], np.full(nl + 1, H)]), L_ELEM),
-    ]
 
 
 @pytest.fixture(scope="module")
