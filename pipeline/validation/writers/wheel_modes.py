@@ -7,9 +7,9 @@ run by `make validate`):
    mesh-convergence study (element size x 2, x 1, x 0.5; P2) and a plot of
    the deviations (``c20_levels``).
 
-The criteria they state are asserted by tests/validation/test_wheel_modes.py on those functions (the fast
-tests/test_harmonic_plate.py, tests/test_axis_regularity.py and tests/test_c20_reference.py assert them on the
-default meshes).
+The criteria they state are asserted by tests/validation/test_wheel_modes.py on ``plate_rows`` (the fast
+tests/test_harmonic_plate.py and tests/test_axis_regularity.py on fewer modes) and by tests/test_c20_reference.py
+(the C20 on the default mesh).
 """
 from __future__ import annotations
 
@@ -164,9 +164,8 @@ def write_c20(tmp_path: Path) -> str:
     s = default[4]
     return save_fragment("21_c20_modes.md", f"""## C20 wheel modes vs the reference table
 
-Written by `pipeline/validation/writers/wheel_modes.py` (`make validate`); asserted by
-`tests/validation/test_wheel_modes.py` (the fast `tests/test_c20_reference.py` asserts the same criteria on the
-default mesh). Reference: the 34
+Written by `pipeline/validation/writers/wheel_modes.py` (`make validate`); `tests/test_c20_reference.py` asserts
+the criteria on the default mesh. Reference: the 34
 modes below 7 kHz of the source thesis' Table 4.1 (`pipeline/validation/references/data/c20_modes.csv`). Matching is by label
 (n, m, class) as classified automatically by `solvers/wheel/mode_labels.py`. Model: `geometry/wheels/c20.toml`
 (flexible wheel clamped at the bore, P2 triangles; the three rigid half-wheelset modes below 20 Hz are not
