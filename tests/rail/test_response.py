@@ -21,59 +21,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from scipy.sparse.linalg import splu
 
 from solvers.rail import response as rr
 from pipeline.validation.references import beam
-from tests.rail import beam_params, rail_model
-
-
-def _gauss_panels(edges, n=8):
-    t, w = np.polynomial.legendre.leggauss(n)
-    a, b = edges[:-1, None], edges[1:, None]
-    return (0.5 * (b - a) * t + 0.5 * (a + b)).ravel(), (0.5 * (b - a) * w).ravel()
-
-
-def _direct(model, fname, y, freq, x_pos):
-    """(1/pi) int_0^inf H(k) cos(k x) dk on the unreduced family, for unit
-    loads in y and z at head point |y|, at x = 0 and x = x_pos; returns
-    {x: 2x2 (y, z) block}.  x = 0: panels to 3e5 rad/m plus the 1/k^2 tail;
-    x > 0: panels up to K = n pi / x ~ 100 rad/m (sin(K x) = 0, so the
-    leading tail term -H(K) sin(K x) / x vanishes; the next one,
-    H'(K) cos(K x) / x^2, is added; beyond, the near field decays as
-    exp(-|k| x))."""
-    fam, rf = model.families[fname], getattr(model, fname)
-    w = 2 * np.pi * freq
-    comps = [c for c in ("y", "z") if (float(y), c) in rf.in_names]
-    F = np.column_stack([rr.rf_loads_vec(fam, model, y, c) for c in comps]).astype(complex)
-    k_w = rr.waves(rf, w)[0]
-    K_end = np.pi * np.ceil(100.0 * x_pos / np.pi) / x_pos
-    edges = [0.0, *np.linspace(0.0, K_end, 25)[1:], *np.geomspace(K_end, 3e5, 22)[1:]]
-    for kp in k_w[(np.abs(k_w.imag) < 0.5 * np.abs(k_w.real)) & (np.abs(k_w.real) < K_end)]:
-        a = abs(kp.imag)
-        edges += list(kp.real + a * np.array([-30, -10, -3, -1, 0, 1, 3, 10, 30]))
-    edges = np.unique(np.clip(edges, 0.0, None))
-    ks, wts = _gauss_panels(edges, 6)
-
-    def H(k):
-        X = splu((fam.K(k, complex_moduli=True) - w * w * fam.M).tocsc()).solve(F)
-        return F.T @ X
-
-    Hs = np.array([H(k) for k in ks])
-    out0 = np.einsum("k,kij->ij", wts, Hs) + H(edges[-1]) * edges[-1]
-    near = ks <= K_end
-    outx = np.einsum("k,kij->ij", wts[near] * np.cos(ks[near] * x_pos), Hs[near])
-    dk = 1e-3 * K_end
-    dH = (H(K_end + dk) - H(K_end - dk)) / (2 * dk)
-    outx += dH * np.cos(K_end * x_pos) / x_pos**2
-    res = {}
-    for xx, o in ((0.0, out0), (x_pos, outx)):
-        G = np.zeros((2, 2), complex)
-        for i, a in enumerate(comps):
-            for j, b in enumerate(comps):
-                G["yz".index(a), "yz".index(b)] = o[i, j] / np.pi
-        res[xx] = G
-    return res
+from pipeline.validation.references.rail import beam_params, direct_receptance, rail_model
 
 
 def test_wave_sum_equals_direct_wavenumber_integral():
@@ -84,7 +35,7 @@ def test_wave_sum_equals_direct_wavenumber_integral():
         rf = getattr(model, fname)
         idx = rr._pairs_for(rf, y)
         K, A = rr.wave_amplitudes(rf, np.array([2 * np.pi * freq]), idx)
-        D = _direct(model, fname, y, freq, x)
+        D = direct_receptance(model, fname, y, freq, x)
         for xx in (x, 0.0):
             g = rr.evaluate(K, A, [xx])[:, 0, 0]  # yy, zz, yz, zy
             G = np.array([[g[0], g[2]], [g[3], g[1]]])

@@ -19,7 +19,7 @@ import pytest
 
 from geometry.outline import GeometryError
 from geometry.rail import check_rail, crown_arcs, full_outline, head_profile, head_slope, section_properties
-from tests.rail import assembled, rail_params
+from pipeline.validation.references.rail import assembled, rail_params
 
 
 @pytest.mark.parametrize("name", ["bv50", "60e1"])

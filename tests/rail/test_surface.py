@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from solvers.rail import surface as RS
-from tests.rail import mesh_path, rail_params
+from pipeline.validation.references.rail import mesh_path, rail_params
 
 F_CHECK = np.array([5.0, 60.0, 250.0, 435.0, 900.0, 1500.0, 2500.0, 4000.0, 5500.0, 6400.0])
 

@@ -21,7 +21,7 @@ import pytest
 
 from solvers.rail import waveguide as wg
 from pipeline.validation.references.beam import timoshenko_dispersion
-from tests.rail import assembled, rail_model
+from pipeline.validation.references.rail import assembled, rail_model
 
 
 def _free(name):
