@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from scipy.sparse.linalg import splu
 
 from solvers.rail import response as rr
 from pipeline.validation.references import beam
