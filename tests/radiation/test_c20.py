@@ -1,34 +1,16 @@
 """The radiation model on the built C20 modal artifact (skipped when
 build/wheels/c20/modes.npz has not been made): surfaces and node sets from the
 real outline, the unit-force sound power for a lateral force at the default case's y^W = +32 mm."""
-import json
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-from geometry.wheel import surface_radii, wheel_segments
 from solvers.radiation import thompson_jones as R
-from solvers.constants import thesis_contact_point
-from solvers.radiation import surfaces as SF
-from tests.radiation import node_average as NA
+from pipeline.validation.references import node_average as NA
 from solvers.wheel.receptance import modal_damping
+from pipeline.validation.references.radiation import ART, load_c20, Y_DEFAULT
 
-ART = Path(__file__).resolve().parents[2] / "build" / "wheels" / "c20" / "modes.npz"
-Y_DEFAULT = thesis_contact_point(-0.015)[0]  # the default case's y^W (m)
 pytestmark = pytest.mark.skipif(not ART.exists(), reason="C20 modal artifact not built (make modes)")
-
-
-def load_c20(path=ART):
-    """(modes dict, wheel parameters, surfaces, surface nodes, contact node at the default case's
-    y^W = +32 mm: thesis [4.1] field-positive, solvers.constants)."""
-    d = dict(np.load(path, allow_pickle=False))
-    p = json.loads(str(d["__provenance__"]))["config"]  # the resolved configuration the artifact was built from
-    s = SF.radiation_surfaces(surface_radii(p), wheel_segments(p))
-    bnd = {k[len("boundary_"):]: d[k] for k in d if k.startswith("boundary_")}
-    nodes = SF.surface_nodes(d["points"], bnd, s)
-    c = NA.contact_node(d["points"], bnd, Y_DEFAULT, p["axle"]["rolling_circle_z"])
-    return d, p, s, nodes, c
 
 
 @pytest.fixture(scope="module")

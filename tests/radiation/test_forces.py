@@ -15,64 +15,12 @@ import pytest
 
 from pipeline.stages.radiate import sound_power_of_forces
 from solvers.radiation import surfaces as SF
-from tests.radiation import node_average as NA
+from pipeline.validation.references import node_average as NA
 from solvers.radiation.force_power import build_model, decompose_forces, harmonic_power, power_of_forces
-from tests.radiation.test_power import BND, PTS, SHAPE
-from tests.radiation.test_surfaces import RADII, flat_disc_segments
+from pipeline.validation.references.radiation import (BND, DT, N, PTS, RADII, SHAPE, flat_disc_segments,
+                                                      modal_velocity_reference, one_mode_model)
 
-DT = 36e-6  # SPEC 6
-N = 13889  # 0.5 s, the simulation's final stretch
 PI = 3.141592653589793
-
-# flat disc wheel, by hand (tests/radiation/test_surfaces.py): annulus areas, both faces (m^2)
-S_A_HAND = np.array([0.09303041, 0.13457798, 0.17612554, 0.21767310, 0.32107077])
-S_R_HAND = 0.41720350  # 2 pi [0.40 * 0.10 + 0.33 (0.10 - 0.02)]
-GAMMA_HAND = 0.45256964
-# nodes of PTS on the surfaces (by radius): annuli q = 1..5 <- nodes 1, 2, 3, 4, 5; radial <- nodes 0, 6
-AXIAL_NODES = [[1], [2], [3], [4], [5]]
-RADIAL_NODES = [0, 6]
-
-
-def sigma_by_hand(n, f):
-    """SPEC 5 with r = 0.40, c0 = 343 written out (not the module's functions)."""
-    kap = 1.9 + 1.015 * n - 0.0189 * n * n
-    fca = 343.0 * kap / (2 * PI * 0.40)
-    sa = 1 / (1 + (fca / f) ** (2 * n + 4))
-    s = (0.40 / 0.42) ** 0.5
-    fr1, fr2, fr3 = 120.0 * n / s, 800.0 / s, (280.0 + 150.0 * n) / s
-    g = GAMMA_HAND if f < fr3 else 1.0
-    sr = g / (1 + (fr2 / f) ** 2) * (1.0 if n == 0 else 1 / (1 + (fr1 / f) ** (2 * n)))
-    return sa, sr
-
-
-def one_mode_model(n, f_r, m_r, zeta):
-    modes = {"f_hz": np.array([f_r]), "n": np.array([n]), "m": np.array([0]), "cls": np.array(["a"]),
-             "modal_mass": np.array([m_r]), "shapes": SHAPE[None].copy()}
-    s = SF.radiation_surfaces(RADII, flat_disc_segments())
-    nodes = SF.surface_nodes(PTS, BND, s)
-    phi = np.array([[SHAPE[0, 1], SHAPE[0, 0]]])  # contact at node 0: (U_z, U_r)
-    return build_model(modes, s, nodes, phi, [zeta]), modes
-
-
-def modal_velocity_reference(n, f_r, m_r, zeta, A2, A3, theta):
-    """rho c0 [sigma_a sum_q S_aq <v_aq^2> + sigma_r S_r <v_r^2>] from the time-domain modal velocity."""
-    w = 2 * PI * f_r
-    u2, u3 = SHAPE[0, 1], SHAPE[0, 0]
-    # one period, finely sampled (the time mean of a periodic signal), and the circumference
-    t = np.arange(400) / 400 / f_r
-    P = u2 * A2 * np.cos(w * t) + u3 * A3 * np.cos(w * t + theta)  # modal force (oscillating part)
-    qdot = P / (2 * zeta * m_r * w)  # steady state at resonance
-    phi = np.arange(360) * 2 * PI / 360
-    ang = np.cos(n * phi)
-
-    def ms(node, comp):  # space-time mean square of the velocity component at a node
-        v = SHAPE[node, comp] * qdot[:, None] * ang[None, :]
-        return np.mean(v**2)
-
-    v2a = np.array([np.mean([ms(i, 1) for i in nodes]) for nodes in AXIAL_NODES])  # axial: U_z
-    v2r = np.mean([ms(i, 0) for i in RADIAL_NODES])  # radial: U_r
-    sa, sr = sigma_by_hand(n, f_r)
-    return 1.21 * 343.0 * (sa * S_A_HAND @ v2a + sr * S_R_HAND * v2r)
 
 
 def test_steady_state_modal_velocity_by_integration():

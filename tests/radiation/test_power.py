@@ -5,30 +5,11 @@ import numpy as np
 import pytest
 
 from solvers.radiation.thompson_jones import C0, RHO_AIR, frequency_grid, sigma_axial, sigma_radial
-from solvers.radiation.surfaces import radiation_surfaces, surface_nodes
 from solvers.wheel.receptance import modal_damping, modal_frf
-from tests.radiation.node_average import sound_power, unit_force_power
-from tests.radiation.test_surfaces import RADII, flat_disc_segments
+from pipeline.validation.references.node_average import sound_power, unit_force_power
+from pipeline.validation.references.radiation import SHAPE, setup
 
 PI = np.pi
-
-# synthetic section nodes (r, Z): 0 contact (tread), 1-4 web, 5 tyre side face, 6 tyre inner
-PTS = np.array([[0.40, 0.0], [0.12, -0.01], [0.18, 0.01], [0.25, -0.01], [0.30, 0.01], [0.36, 0.05],
-                [0.33, -0.03]])
-BND = {"tread": [0], "web_gauge": [1, 3], "web_field": [2, 4], "field_face": [5], "tyre_inner": [6]}
-# one mode shape (U_r, U_z, U_phi) per node
-SHAPE = np.array([[0.3, 1.0, 0.1], [0.0, 0.05, 0.0], [0.0, 0.2, 0.0], [0.02, 0.5, 0.0], [0.05, 0.8, 0.0],
-                  [0.1, 0.9, 0.0], [0.25, 0.7, 0.0]])
-
-
-def setup(n=2, f_r=1000.0, m_r=20.0, zeta=1e-4, extra=None):
-    modes = {"f_hz": np.array([f_r]), "n": np.array([n]), "cls": np.array(["a"]), "kind": np.array(["flexible"]),
-             "modal_mass": np.array([m_r]), "shapes": SHAPE[None].copy(), "zeta_suspension": np.array([np.nan])}
-    if extra is not None:
-        for k, v in extra.items():
-            modes[k] = np.concatenate([modes[k], v])
-    s = radiation_surfaces(RADII, flat_disc_segments())
-    return modes, s, surface_nodes(PTS, BND, s), zeta
 
 
 def test_single_mode_at_resonance_lateral():

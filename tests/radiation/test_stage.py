@@ -12,7 +12,7 @@ import pytest
 from pipeline.store import artifacts, paths
 from pipeline.stages import radiate as RS
 from solvers.constants import F_MAX_HZ
-from tests.radiation import node_average as NA
+from pipeline.validation.references import node_average as NA
 
 ROOT = paths.ROOT
 REAL = ROOT / "build"

@@ -5,28 +5,10 @@ import numpy as np
 import pytest
 
 from solvers.radiation.surfaces import annulus_radii, radiation_surfaces, surface_nodes, web_thickness_profile
-from tests.radiation.node_average import contact_node
+from pipeline.validation.references.node_average import contact_node
+from pipeline.validation.references.radiation import flat_disc_segments, RADII
 
 PI = 3.141592653589793
-
-# Flat disc wheel in (r, Z): hub r <= 0.10, web 0.10..0.33 of constant thickness 0.02
-# (Z = -0.01..0.01), rectangular tyre 0.33..0.40 of width 0.10 (Z = -0.05..0.05).
-RADII = {"r": 0.40, "w": 0.10, "w_web": 0.03, "r_in": 0.33, "r_hub": 0.10}  # w_web: a deliberately different "mean"
-
-
-def flat_disc_segments():
-    return {
-        "hub_inboard": np.array([[0.05, -0.04], [0.10, -0.04]]),
-        "hub_outer": [np.array([[0.10, -0.04], [0.10, -0.01]]), np.array([[0.10, 0.01], [0.10, 0.04]])],
-        "web_gauge": np.array([[0.10, -0.01], [0.20, -0.01], [0.33, -0.01]]),
-        "tyre_inner": [np.array([[0.33, -0.01], [0.33, -0.05]]), np.array([[0.33, 0.05], [0.33, 0.01]])],
-        "flange_back": np.array([[0.33, -0.05], [0.43, -0.05]]),
-        "flange": np.array([[0.43, -0.05], [0.40, -0.03]]),
-        "tread": np.array([[0.40, -0.03], [0.40, 0.05]]),
-        "field_face": np.array([[0.40, 0.05], [0.33, 0.05]]),
-        "web_field": np.array([[0.33, 0.01], [0.25, 0.01], [0.10, 0.01]]),
-        "hub_outboard": np.array([[0.10, 0.04], [0.05, 0.04]]),
-    }
 
 
 def test_annulus_radii_divide_the_web_evenly():
