@@ -3,8 +3,8 @@ screen-first verdict could differ from ``make curve``'s (issue 27).
 
     .venv/bin/python -m pipeline.validation.line_doc [--study metro_line] [--radii 50,75,...]
 
-Reads the finished line study (``make study STUDY=metro_line``: build/studies/<line>/line.csv and its
-figures, copied beside the fragment) and runs the curve stage (every wheel screened and run in the time
+Reads the line study (``make study STUDY=metro_line``, run through Make here: build/studies/<line>/line.csv and
+its figures, copied beside the fragment) and runs the curve stage (every wheel screened and run in the time
 loop, no what-ifs) over the radius study's curves (``pipeline.study.radius``: the metro on R = 50-1000 m at
 its design speeds, cant as designed): a wheel the screen finds stable but the time loop makes squeal is one
 the screen-first path would call quiet.
@@ -98,8 +98,8 @@ curve` does.  On the example line itself, {line_unstable} wheels were unstable i
 time loop, {line_squeal} of them squeal.  The screen-first verdict of a squealing wheel is `make curve`'s own (the
 same stages), and its screen numbers are `make curve`'s bit for bit (tests/verdict/test_screen_first.py).
 
-Written by `.venv/bin/python -m pipeline.validation.line_doc` from build/studies/{line}/ (the test
-`tests/study/test_line_validation.py`, `make validate`).
+Written by `.venv/bin/python -m pipeline.validation.line_doc` from build/studies/{line}/ (`make validate`, which
+runs the study through Make; `tests/study/test_line_validation.py` asserts the line's table).
 """
 
 
@@ -114,14 +114,16 @@ def main(argv=None) -> int:
     from pipeline.store import paths
     from pipeline.store.atomic import save_text
 
+    from pipeline.store.atomic import atomic_write
+    from pipeline.validation.make import make_targets
+
     out = paths.build() / "studies" / args.study
-    if not (out / "line.csv").exists():
-        print(f"error: {out / 'line.csv'} missing: run `make study STUDY={args.study}` first", file=sys.stderr)
-        return 2
+    make_targets("study", STUDY=args.study)           # run, or resumed when done (its rows are kept)
     rows = list(csv.DictReader(open(out / "line.csv")))
     docs = Path(paths.ROOT) / "docs" / "validation"
     for src, dst in (("level_radius.png", "line_level_radius.png"), ("chainage.png", "line_chainage.png")):
-        shutil.copyfile(out / src, docs / dst)
+        with atomic_write(docs / dst) as tmp:
+            shutil.copyfile(out / src, tmp)
     checks = screen_against_time_loop([float(r) for r in args.radii.split(",")])
     save_text(fragment(args.study, rows, (out / "line.md").read_text(), checks), docs / FRAGMENT)
     print(docs / FRAGMENT)

@@ -1,6 +1,6 @@
-"""The example line (`make study STUDY=metro_line`) end to end and its validation fragment
-docs/validation/94_line.md (the rule comparison with its plots; the screen-first verdict against the curve
-stage over the radius study's curves): slow, `make validate`."""
+"""The example line (`make study STUDY=metro_line`) end to end: 30 curves on dry and wet rail, its table, plots
+and NoiseModelling rows (one per squealing row); slow, `make validate` (its fragment docs/validation/94_line.md
+is written by pipeline/validation/line_doc.py)."""
 import csv
 import subprocess
 import sys
@@ -22,7 +22,3 @@ def test_example_line_and_its_fragment():
         assert (out / f).exists(), f
     sq = [x for x in rows if x["squeals"] == "1"]
     assert len(list(csv.DictReader(open(out / "lw_railway.csv")))) == len(sq)
-    r = subprocess.run([sys.executable, "-m", "pipeline.validation.line_doc"], cwd=ROOT, capture_output=True, text=True)
-    assert r.returncode == 0, r.stderr[-3000:]
-    text = (ROOT / "docs" / "validation" / "94_line.md").read_text()
-    assert "CNOSSOS-EU" in text and "Schall 03" in text and "Screen first against the curve stage" in text
