@@ -1,7 +1,7 @@
 """Generated documentation pages.
 
 ``python -m pipeline.validation.docs validation`` assembles docs/validation.md from the
-fragments the validation tests write (docs/validation/*.md, in name order);
+fragments the validation writers write (docs/validation/*.md, in name order; ``pipeline.validation.writers``);
 ``python -m pipeline.validation.docs inputs`` writes docs/inputs.md, the reference of every
 input key (unit, range, default, meaning) generated from the schemas
 (``pipeline/config/input_schemas.py``, the study schemas, and the schema modules listed in
@@ -21,7 +21,8 @@ HEADER = """# Validation
 Every stage is checked against something it did not produce: exact
 solutions, published tables, an independent second method. This file is
 assembled by `make validate` from the fragments in `docs/validation/`
-(each written by the validation test named in it); plots are beside them.
+(each written by the writer named in it, `pipeline/validation/writers/`; the
+limits a fragment states are asserted by the tests it names); plots are beside them.
 """
 
 # (title, file pattern, module, attribute): one section of docs/inputs.md each; a dict attribute

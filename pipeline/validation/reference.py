@@ -3,7 +3,8 @@ issue 13): per contact position the squealing mode and its share, the low-freque
 region, the L_W band, the friction of the L_W maximum and the creepage threshold per mu.
 
 ``reference_table(rows, modes)`` turns the map's rows (map.csv as dicts) into markdown; the
-validation test tests/study/test_reference_behaviour.py writes it to docs/validation.
+writer pipeline/validation/writers/reference_behaviour.py writes it to docs/validation (the test
+tests/study/test_reference_behaviour.py asserts what it states).
 """
 from __future__ import annotations
 

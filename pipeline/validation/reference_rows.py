@@ -5,8 +5,8 @@ Inputs are the tables of ``python -m pipeline.validation.limit_cycle_runs`` (bui
 slices.csv (the map's simulation at 5 creepages x 11 friction coefficients per position), growth.csv
 (the screen's (2,0,a) growth rates), knees.csv (s_knee of every friction curve), coupling.csv (the
 one-mode full-slip thresholds mu_c = -Phi3/Phi2).  ``evaluate`` returns the rows; the test
-tests/study/test_reference_behaviour.py asserts the reproduced parts and writes them to
-docs/validation/81_reference_behaviour.md.
+tests/study/test_reference_behaviour.py asserts the reproduced parts; the writer
+pipeline/validation/writers/reference_behaviour.py writes them to docs/validation/81_reference_behaviour.md.
 """
 from __future__ import annotations
 
