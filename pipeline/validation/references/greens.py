@@ -24,7 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
-from solvers.constants import THESIS_CONTACT_POINTS_FIELD
+from solvers.constants import F_MAX_HZ, THESIS_CONTACT_POINTS_FIELD
 
 from pipeline.store.paths import ROOT
 
@@ -41,9 +41,12 @@ Y_CONTACT = {round(1e3 * dy): yw for dy, (yw, _) in THESIS_CONTACT_POINTS_FIELD.
 # ------------------------------------------------------------------------------------- SDOF
 
 def sdof_receptance(f, m, f0, zeta):
+    """x/F of m x'' + c x' + k x = F at W = 2 pi f: 1 / (k - m W^2 + i W c), k = m (2 pi f0)^2, c = 2 zeta m 2 pi f0
+    (the equation of motion, not the solvers' modal FRF)."""
     W = 2 * np.pi * np.asarray(f, float)
-    w0 = 2 * np.pi * f0
-    return 1.0 / (m * (w0 ** 2 - W ** 2 + 2j * zeta * w0 * W))
+    k = m * (2 * np.pi * f0) ** 2
+    c = 2 * zeta * m * 2 * np.pi * f0
+    return 1.0 / (k - m * W ** 2 + 1j * W * c)
 
 
 def sdof_impulse(t, m, f0, zeta):
@@ -215,7 +218,7 @@ def kernel_spectrum(g, n_t):
     return sfft.rfft(np.asarray(g), n=n_t, axis=0)
 
 
-def pointwise_error(f, Gd, G, bands=((5.0, 2000.0), (5.0, 6500.0))):
+def pointwise_error(f, Gd, G, bands=((5.0, 2000.0), (5.0, F_MAX_HZ))):
     """max |Gd - G| / |G| over each frequency band (lo, hi) and where it sits: [(max, f), ...]."""
     with np.errstate(divide="ignore", invalid="ignore"):     # G = 0 outside the bands is allowed
         e = np.abs(Gd - G) / np.abs(G)
@@ -244,7 +247,7 @@ def band_rms(f, A, octave_fraction=1 / 3):
     return np.sqrt((c[hi] - c[lo]) / np.maximum(hi - lo, 1))
 
 
-def participating_peaks(w, i, j, G_at_peaks, f_lo=100.0, f_hi=6500.0, share=0.5):
+def participating_peaks(w, i, j, G_at_peaks, f_lo=100.0, f_hi=F_MAX_HZ, share=0.5):
     """Indices of the modes between f_lo and f_hi whose resonant term
     |Phi_i Phi_j| / (2 zeta m w^2) is at least ``share`` of |G_ij| at f_r."""
     phi, m, z, fr = w["phi"], w["modal_mass"], w["zeta"], w["f_hz"]

@@ -20,6 +20,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from solvers.constants import F_MAX_HZ
+
 from solvers.timeloop.interaction import ContactModel, WheelModes, contact_model
 
 from pipeline.store.paths import ROOT
@@ -85,7 +87,7 @@ def beam_kernel(dt: float = DT, v: float = V, n_lags: int | None = None, n_t: in
     return moving_green(beam_transfer(), v, dt, n_lags, n_t)
 
 
-def bv50_transfer(y_rail: float = 0.012, f_max: float = 6500.0):
+def bv50_transfer(y_rail: float = 0.012, f_max: float = F_MAX_HZ):
     """transfer(x, f) -> (nx, nf, 2, 2) of the built BV50 rail at the head point y_rail (bilinear
     interpolation of the stored receptances, see the module notes)."""
     with np.load(RAIL) as d:

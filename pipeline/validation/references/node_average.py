@@ -123,8 +123,8 @@ def surface_velocities(f, F2, F3, modes: Mapping, nodes: SurfaceNodes, contact: 
 
 
 def sound_power(f, F2, F3, modes: Mapping, surfaces: Surfaces, nodes: SurfaceNodes, contact: int, *,
-                rho: float = RHO_AIR, c0: float = C0, torsion: bool = False, points=None, zeta=None,
-                rigid: bool = True, force_amplitude: str = "rms") -> RadiationResult:
+                air: tuple = (RHO_AIR, C0), torsion_points=None, zeta=None, rigid: bool = True,
+                force_amplitude: str = "rms") -> RadiationResult:
     """Sound power W(f) [4.38] of the wheel driven at node ``contact`` by the
     lateral and vertical contact-force amplitudes F2(f), F3(f).
 
@@ -132,15 +132,15 @@ def sound_power(f, F2, F3, modes: Mapping, surfaces: Surfaces, nodes: SurfaceNod
     = (U_r, U_z, U_phi), zeta_suspension (the wheel modal artifact works as is).
     ``force_amplitude``: 'rms' (default; [4.56] as printed is then the space
     and time mean square) or 'peak' (adds the time average 1/2).
-    ``torsion``: add the torsion term (needs ``points``; off by default as in
+    ``air``: (rho, c0).  ``torsion_points``: the section's points, to add the torsion term (off by default as in
     the thesis).  ``rigid``: include the rigid half-wheelset modes."""
     f = np.atleast_1d(np.asarray(f, float))
     if force_amplitude not in ("rms", "peak"):
         raise ValueError("force_amplitude: 'rms' or 'peak'")
-    if torsion and points is None:
-        raise ValueError("torsion=True needs the section points")
+    rho, c0 = air
+    torsion = torsion_points is not None
     harm, v2a, v2r, v2t = surface_velocities(f, F2, F3, modes, nodes, contact, zeta=zeta, rigid=rigid,
-                                             points=points if torsion else None)
+                                             points=torsion_points)
     if force_amplitude == "peak":
         v2a, v2r, v2t = 0.5 * v2a, 0.5 * v2r, 0.5 * v2t
     sa = sigma_axial(harm[:, None], f[None, :], surfaces.r, c0)

@@ -82,10 +82,11 @@ def solve_coulomb_dense(M, r, g, tol=1e-12, max_iter=200):
     raise RuntimeError("dense TANG did not converge")
 
 
-def tang_dense(p3, dx, dy, v, mu, gamma_x=0.0, gamma_y=0.0, spin=0.0, E=210e9, nu=0.3, *, steady=True,
+def tang_dense(p3, dx, dy, v, mu, gamma_x=0.0, gamma_y=0.0, spin=0.0, material=(210e9, 0.3), *, steady=True,
                prev=None, w_offset=1.0 / 6.0):
     """Steady (prev ignored) or one transient step after the traction field prev = (p1, p2) on the
-    grid (None: traction-free).  Returns (p1, p2, stick) on the grid."""
+    grid (None: traction-free); ``material``: (E, nu).  Returns (p1, p2, stick) on the grid."""
+    E, nu = material
     p3 = np.asarray(p3, float)
     contact = p3 > 0
     nx, ny = p3.shape

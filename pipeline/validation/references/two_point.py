@@ -14,6 +14,8 @@ import math
 
 import numpy as np
 
+from solvers.constants import F_MAX_HZ
+
 from solvers.contact.frame import project_receptance
 from solvers.greens.kernels import green_from_receptance
 from solvers.stability.screen import characteristic, linearise, wheel_roots
@@ -131,12 +133,12 @@ def projected_kernel(w, n_t, f, angle=ANGLE):
     reference), Gd (the projected kernel's DFT), phi_t (the tilted shapes), band (5 Hz - 6.5 kHz), err (the
     Frobenius-norm error per frequency in the band) and err0 (the unprojected kernel's)."""
     G = wheel_receptance(f, w["f_hz"], w["modal_mass"], w["n"], w["phi"], w["zeta"])
-    g = green_from_receptance(G, DT, n_t, band_limit=6500.0)
+    g = green_from_receptance(G, DT, n_t, band_limit=F_MAX_HZ)
     e2, e3 = tilted_directions(angle)
     phi_t = np.column_stack([w["phi"] @ e2, w["phi"] @ e3])         # shapes along the tilted directions
     Gt = wheel_receptance(f, w["f_hz"], w["modal_mass"], w["n"], phi_t, w["zeta"])
     Gd = kernel_spectrum(project_receptance(g, angle), n_t)
-    band = (f >= 5.0) & (f <= 6500.0)
+    band = (f >= 5.0) & (f <= F_MAX_HZ)
     err = np.linalg.norm(Gd[band] - Gt[band], axis=(1, 2)) / np.linalg.norm(Gt[band], axis=(1, 2))
     err0 = (np.linalg.norm(kernel_spectrum(g, n_t)[band] - G[band], axis=(1, 2))
             / np.linalg.norm(G[band], axis=(1, 2)))

@@ -59,7 +59,7 @@ def measure() -> dict:
     from pipeline.study.definition import load_study
     from pipeline.stages.wheel import load_wheel, reference_rows
     from postprocess.modes.reference import match_modes, summary
-    from solvers.constants import THESIS_CONTACT_POINTS_FIELD
+    from solvers.constants import F_MAX_HZ, THESIS_CONTACT_POINTS_FIELD
 
     for case in ("dy05", "dy10"):
         ensure_case(case)
@@ -78,7 +78,7 @@ def measure() -> dict:
                          f"{tread_ratio(modes, p, y0, label):+.3f} | {1e3 * z:+.1f} | "
                          + ", ".join(f"{v:+.3f}" for v in r[[3, 5, 7, 9]]) + " |")
 
-    f = np.geomspace(100.0, 6500.0, 4000)
+    f = np.geomspace(100.0, F_MAX_HZ, 4000)
     points = sorted(y for y, _ in THESIS_CONTACT_POINTS_FIELD.values())
     lev = {y: _levels(modes, p, y, f) for y in points}
     g23 = {y: v[1] for y, v in lev.items()}

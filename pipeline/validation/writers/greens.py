@@ -13,6 +13,8 @@ import time
 
 import numpy as np
 
+from solvers.constants import F_MAX_HZ
+
 from solvers.greens.kernels import choose_grid, decayed, frequency_grid, green_from_receptance, points_in_band
 from solvers.wheel.receptance import contact_node, contact_shape, wheel_receptance
 
@@ -31,7 +33,7 @@ def _db(x):
 def receptance_section(cases) -> str:
     plt = pyplot()
     w0 = cases[-15]
-    f = np.unique(np.concatenate([np.geomspace(100, 6500, 20000), w0["f_hz"][(w0["f_hz"] > 100) & (w0["f_hz"] < 6500)]]))
+    f = np.unique(np.concatenate([np.geomspace(100, F_MAX_HZ, 20000), w0["f_hz"][(w0["f_hz"] > 100) & (w0["f_hz"] < F_MAX_HZ)]]))
     fig, ax = plt.subplots(3, 1, figsize=(8, 10), sharex=True)
     styles = {-15: ("k", "-"), -10: ("k", "--"), -5: ("0.55", "-")}
     rows = []
@@ -56,7 +58,7 @@ def receptance_section(cases) -> str:
                         f"{np.median(dl['G23']):.2f} / {dl['G23'].max():.1f} |")
     for a in ax:
         a.grid(True, which="both", lw=0.3)
-        a.set_xlim(100, 6500)
+        a.set_xlim(100, F_MAX_HZ)
     ax[0].legend(fontsize=8)
     ax[-1].set_xlabel("frequency (Hz)")
     fig.suptitle(f"C20 wheel receptances at the three contact points ({w0['source']})", fontsize=10)

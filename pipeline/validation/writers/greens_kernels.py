@@ -7,6 +7,8 @@ import time
 
 import numpy as np
 
+from solvers.constants import F_MAX_HZ
+
 from solvers.greens.kernels import (choose_grid, convolve_direct, decayed, frequency_grid, green_from_receptance,
                                     modal_filter, modal_kernel)
 from solvers.wheel.receptance import wheel_receptance
@@ -16,7 +18,7 @@ from pipeline.validation.references.greens import (DT, Y_CONTACT, band_rms, kern
 from pipeline.validation.writers import DOCS, pyplot, save_figure
 
 NAMES = {(0, 0): "G22", (1, 1): "G33", (0, 1): "G23"}
-F_BAND = 6500.0       # the band of the criterion (and of the models)
+F_BAND = F_MAX_HZ       # the band of the criterion (and of the models)
 
 
 def _envelope(f, y, n_bins=4000, f_lo=5.0, f_hi=F_BAND):
@@ -113,7 +115,7 @@ def fft_section(w) -> tuple[str, dict]:
     up = f > F_BAND
     pk, pc, pm = (passivity(D[band]) for D in (Gd, Gdc, Gm))
     puk, puc = passivity(Gd[up]), passivity(Gdc[up])
-    gmin = np.abs(G[(f > 4500) & (f < 6500), 0, 0]).min()
+    gmin = np.abs(G[(f > 4500) & (f < F_MAX_HZ), 0, 0]).min()
     peak = np.abs(g).max(axis=0)
     hrel = np.abs(fit.correction) / peak
     gmk = modal_kernel(16, DT, w["f_hz"], w["modal_mass"], w["zeta"], w["phi"])
@@ -178,7 +180,7 @@ dG = DFT(g) - G, the DFT of the kernel zero-padded to N_t; g[0] included (the ti
 * **What the time loop uses.** The wheel enters the time loop through the recursive modal filters, whose kernel is the
   sampled modal impulse response: neither Kropp's kernel nor its correction is used there, so the correction changes
   no simulation. That kernel's spectrum is the aliased sum over the images f + m/dt: its Im error is below
-  {np.abs((Gm - G).imag[(f > 5) & (f < 6500)]).max():.0e} m/N (passive: minimum eigenvalue {pm.min():.1e} m/N), its real
+  {np.abs((Gm - G).imag[(f > 5) & (f < F_MAX_HZ)]).max():.0e} m/N (passive: minimum eigenvalue {pm.min():.1e} m/N), its real
   part is offset by the aliased mass line -C dt^2/12, C = sum phi phi^T / m_r (C22 dt^2/12 = {g0m[0, 0]:.2e}, measured
   {(Gm - G)[np.searchsorted(f, 1000), 0, 0].real:.2e} m/N at 1 kHz): pointwise it fails the criterion at the antiresonances
   too (row above). That offset is a frequency-independent compliance of the kind the omitted g[0] stands for (the

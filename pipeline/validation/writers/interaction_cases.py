@@ -8,7 +8,7 @@ import time
 
 import numpy as np
 
-from solvers.constants import thesis_contact_point
+from solvers.constants import F_MAX_HZ, thesis_contact_point
 from solvers.timeloop.interaction import WheelModes, contact_model, simulate
 
 from pipeline.store.paths import ROOT
@@ -168,7 +168,7 @@ def default_section() -> str:
     ax[2].semilogy(f, np.abs(X), lw=0.7, label="|F2|, dt = 36 us")
     for i in an:
         ax[2].axvline(wheel.f_r[i], color="0.7", lw=0.6)
-    ax[2].set_xlim(0, 6500)
+    ax[2].set_xlim(0, F_MAX_HZ)
     ax[0].set(xlabel="t (s)", ylabel="F2 (kN)", title="growth into the limit cycle")
     ax[1].set(xlabel="t (ms, end of the run)", ylabel="F2 (kN)", title="limit cycle")
     ax[2].set(xlabel="f (Hz)", ylabel="amplitude (N)", title="F2 spectrum; grey: (n,0,a) modes")

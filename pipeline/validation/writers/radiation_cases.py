@@ -6,6 +6,8 @@ import time
 
 import numpy as np
 
+from solvers.constants import F_MAX_HZ
+
 from solvers.radiation import surfaces as SF
 from solvers.radiation import thompson_jones as R
 from solvers.spectra import amplitude_spectrum, dominant_frequency, force_level
@@ -61,12 +63,12 @@ def c20_section() -> list[str]:
     d, p, s, nodes, c = load_c20()
     s_mean = SF.radiation_surfaces({**_radii(p)}, web_thickness="mean")
     zeta = modal_damping(d["n"], d["m"], d["cls"], d["kind"], d["zeta_suspension"])
-    f = R.frequency_grid(100.0, 6500.0, d["f_hz"], zeta)
+    f = R.frequency_grid(100.0, F_MAX_HZ, d["f_hz"], zeta)
     lat = NA.unit_force_power(f, d, s, nodes, c, "lateral")
     rad = NA.unit_force_power(f, d, s, nodes, c, "radial")
     lat_flex = NA.unit_force_power(f, d, s, nodes, c, "lateral", rigid=False)
     rad_flex = NA.unit_force_power(f, d, s, nodes, c, "radial", rigid=False)
-    lat_t = NA.unit_force_power(f, d, s, nodes, c, "lateral", torsion=True, points=d["points"])
+    lat_t = NA.unit_force_power(f, d, s, nodes, c, "lateral", torsion_points=d["points"])
     lat_mean = NA.unit_force_power(f, d, s_mean, nodes, c, "lateral")
     rad_mean = NA.unit_force_power(f, d, s_mean, nodes, c, "radial")
     t_run = time.perf_counter() - t0
@@ -167,7 +169,7 @@ def unit_force_plot(lat, rad, d):
         ax.grid(True, which="both", alpha=0.3)
     axs[0].legend(fontsize=7, ncol=4, loc="lower right")
     axs[1].set_xlabel("frequency (Hz)")
-    axs[1].set_xlim(100, 6500)
+    axs[1].set_xlim(100, F_MAX_HZ)
     fig.tight_layout()
     save_figure(fig, DOCS / "radiation_unit_force.png", dpi=110)
 

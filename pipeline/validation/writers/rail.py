@@ -10,6 +10,8 @@ import time
 
 import numpy as np
 
+from solvers.constants import F_MAX_HZ
+
 from geometry.rail import head_profile, section_properties
 from solvers.rail import response as rr
 from solvers.rail import waveguide as wg
@@ -106,7 +108,7 @@ def dispersion(md: list, c: dict) -> None:
     for sup in (False, True):
         for name in ("sym", "anti"):
             fam = wg.family(asm, mat, name, supported=sup)
-            disp[(sup, name)] = wg.dispersion(fam, ks, 6500.0, p, zc)
+            disp[(sup, name)] = wg.dispersion(fam, ks, F_MAX_HZ, p, zc)
     fig, axs = plt.subplots(1, 2, figsize=(11, 5), sharey=True)
     for ax, sup in zip(axs, (False, True)):
         seen = set()
@@ -178,7 +180,7 @@ def free_rail(md: list, c: dict) -> None:
     sup_rows = ["| family | wave type (at k = 0) | cut-on frequency (Hz) |", "|---|---|---|"]
     for name in ("sym", "anti"):
         fam = wg.family(asm, mat, name, supported=True)
-        f, phi = wg.eig_real_k(fam, 0.0, 6500.0)
+        f, phi = wg.eig_real_k(fam, 0.0, F_MAX_HZ)
         lab, _ = wg.classify(fam, phi, p, zc, 0.0)
         for ff, ll in zip(f, lab):
             sup_rows.append(f"| {name} | {ll} | {ff:.0f} |")

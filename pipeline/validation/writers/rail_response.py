@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from solvers.constants import F_MAX_HZ
+
 from geometry.rail import head_profile
 from solvers.rail import response as rr
 from solvers.rail import waveguide as wg
@@ -24,7 +26,7 @@ def db(G):
 def receptances(md: list, c: dict) -> None:
     plt = pyplot()
     p, asm, mat, tors, E, nu, rho, G_s, model, zc = (c[k] for k in KEYS)
-    f = np.geomspace(25.0, 6500.0, 700)
+    f = np.geomspace(25.0, F_MAX_HZ, 700)
     R = rr.receptances(model, f, [0.0])
     G = R["G"][:, 0]
     fig, axs = plt.subplots(3, 2, figsize=(11, 10), sharex=True)
@@ -41,7 +43,7 @@ def receptances(md: list, c: dict) -> None:
     axs[0, 0].legend(fontsize=8)
     for a in axs[-1]:
         a.set_xlabel("frequency (Hz)")
-        a.set_xlim(25, 6500)
+        a.set_xlim(25, F_MAX_HZ)
     fig.suptitle("BV50 on a continuous pad: point receptances at the three contact points (structural; "
                  "SPEC directions 2 lateral to the field side, 3 vertical downward)", fontsize=9)
     fig.tight_layout()
@@ -222,7 +224,7 @@ def local(md: list, c: dict) -> None:
 def decay(md: list, c: dict) -> None:
     plt = pyplot()
     p, asm, mat, tors, E, nu, rho, G_s, model, zc = (c[k] for k in KEYS)
-    fd = np.geomspace(25.0, 6500.0, 200)
+    fd = np.geomspace(25.0, F_MAX_HZ, 200)
     D = rr.decay_rates(model, fd)
     fig, ax = plt.subplots(figsize=(8, 4.5))
     ax.loglog(fd, D["vertical"], label="vertical (G33 at the head centre)")
@@ -231,7 +233,7 @@ def decay(md: list, c: dict) -> None:
     ax.loglog(fd, D["min_wave_anti"], ":", color="C1", lw=1, label="least-attenuated wave, anti family")
     ax.set_xlabel("frequency (Hz)")
     ax.set_ylabel("decay rate (dB/m)")
-    ax.set_xlim(25, 6500)
+    ax.set_xlim(25, F_MAX_HZ)
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8)
     ax.set_title("BV50 track decay rates, DR = 4.343 |G(0)|^2 / int_0^inf |G(x)|^2 dx (exact from the waves)",
@@ -261,7 +263,7 @@ def convergence(md: list) -> None:
         cut = {}
         for name in ("sym", "anti"):
             fam = wg.family(asmm, matm, name, supported=True)
-            f_, phi_ = wg.eig_real_k(fam, 0.0, 6500.0)
+            f_, phi_ = wg.eig_real_k(fam, 0.0, F_MAX_HZ)
             lab_, _ = wg.classify(fam, phi_, pm, torm["z_centroid"], 0.0)
             for ff, ll in zip(f_, lab_):
                 cut.setdefault((name, ll), ff)

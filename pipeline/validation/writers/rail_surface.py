@@ -23,6 +23,8 @@ from pathlib import Path
 
 import numpy as np
 
+from solvers.constants import F_MAX_HZ
+
 from pipeline.store.paths import ROOT
 from pipeline.validation.make import make_targets
 from pipeline.validation.writers import DOCS, save_figure, save_fragment
@@ -55,7 +57,7 @@ def default_point():
     with np.load(NEEDS[1]) as d:
         ref = {key: d[key] for key in ("rail_kernel", "rail_point_receptance")}
     f = frequency_grid(DT, _grid()["n_t"])[: len(ref["rail_point_receptance"])]
-    band = f <= 6500.0
+    band = f <= F_MAX_HZ
     G, G0 = surf["rail_point_receptance"], ref["rail_point_receptance"]
     e_G = np.abs(G - G0).max(axis=(1, 2)) / np.abs(G0).max(axis=(1, 2))
     g, g0 = surf["rail_kernel"], ref["rail_kernel"]
@@ -126,7 +128,7 @@ def plot(d, fb, eb) -> None:
     ax[0].set_title("BV50 point receptance at y^R = 12 mm", fontsize=9)
     ax[1].semilogy(d["f"], d["e_G"], lw=0.7, label="12 mm (node): surface table vs direct")
     ax[1].semilogy(fb, eb, "o", ms=3, label="13.5 mm (between nodes) vs mesh with a node there")
-    ax[1].axvline(6500, color="k", lw=0.5)
+    ax[1].axvline(F_MAX_HZ, color="k", lw=0.5)
     ax[1].set_xlabel("f (Hz)")
     ax[1].set_ylabel("max |dG| / max |G|")
     ax[1].legend(fontsize=7)
@@ -146,7 +148,7 @@ def write() -> str:
     sims = simulate_both(d["surf"]["rail_kernel"])
     plot(d, fb, eb)
     (L0, f0), (L1, f1) = sims.values()
-    inb = fb <= 6500.0
+    inb = fb <= F_MAX_HZ
     text = f"""## The rail at any point of the running surface
 
 Written by `pipeline/validation/writers/rail_surface.py` (`make validate`; {time.perf_counter() - t0:.0f} s; the criteria

@@ -21,6 +21,8 @@ import csv
 
 import numpy as np
 
+from solvers.constants import SQUEAL_LEVEL_DB
+
 from pipeline.store.paths import ROOT
 from pipeline.validation.make import make_targets
 from pipeline.validation.writers import save_fragment
@@ -81,7 +83,7 @@ def map_section() -> str:
     bands = []
     for dy, s in summ.items():
         lo, hi = REFERENCE[dy][2]
-        lw = [r["L_W"] for r in rows if round(1e3 * r["dy_wr"]) == dy and r["L_F2"] >= 10.0 and np.isfinite(r["L_W"])]
+        lw = [r["L_W"] for r in rows if round(1e3 * r["dy_wr"]) == dy and r["L_F2"] >= SQUEAL_LEVEL_DB and np.isfinite(r["L_W"])]
         bands.append(f"{dy} mm: {100 * np.mean([(lo <= v <= hi) for v in lw]):.0f} % in {lo:.0f}-{hi:.0f} dB")
     bands = "; ".join(bands)
     text = f"""## The map against the reference model's findings (issue 13)

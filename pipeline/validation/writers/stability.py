@@ -18,6 +18,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from solvers.constants import SQUEAL_LEVEL_DB
+
 from pipeline.store.paths import ROOT
 from pipeline.validation.make import ensure_case, make_targets
 from pipeline.validation.references.falling import falling_contact
@@ -123,7 +125,7 @@ def full_grid_decision(margin: float = 0.5) -> tuple[str, list]:
     key = lambda r: (r["case"], round(float(r["gamma_y"]), 6), round(float(r["mu"]), 6))                 # noqa: E731
     sig = {key(r): float(r["sigma_max"]) for r in csv.DictReader(open(s, newline=""))}
     A = list(csv.DictReader(open(a, newline="")))
-    sq = [r for r in A if r["L_F2"] not in ("nan", "") and float(r["L_F2"]) >= 10.0]
+    sq = [r for r in A if r["L_F2"] not in ("nan", "") and float(r["L_F2"]) >= SQUEAL_LEVEL_DB]
     missed = [key(r) for r in sq if sig[key(r)] < -margin]
     low = min(sig[key(r)] for r in sq)
     skip = sum(1 for r in A if sig[key(r)] < -margin)
@@ -146,7 +148,7 @@ def screened_check() -> tuple[str, list, list]:
         return "(run `make study STUDY=map QUICK=1` and `make study STUDY=map-screened QUICK=1`)\n", [], []
     rd = lambda p: {(r["case"], r["gamma_y"], r["mu"]): r for r in csv.DictReader(open(p, newline=""))}  # noqa: E731
     A, B = rd(a), rd(b)
-    sq = lambda r: r["L_F2"] not in ("nan", "") and float(r["L_F2"]) >= 10.0                           # noqa: E731
+    sq = lambda r: r["L_F2"] not in ("nan", "") and float(r["L_F2"]) >= SQUEAL_LEVEL_DB                # noqa: E731
     skipped = [k for k in B if B[k]["stop_reason"].startswith("screened")]
     missed = [k for k in A if sq(A[k]) and not sq(B[k])]
     differ = [k for k in A if k not in skipped and A[k]["L_F2"] != B[k]["L_F2"]]
