@@ -36,7 +36,7 @@ def _offset(case) -> float:
 
 
 def results():
-    from tests.radiation.test_cnossos_rolling import CASES, ours
+    from pipeline.validation.cnossos_cases import CASES, ours
     return [(c, ours(c), np.array(c.expected)) for c in CASES]
 
 
@@ -57,7 +57,7 @@ def examples():
 
 def fragment(res, ex) -> str:
     from solvers.radiation.rolling_cnossos import F_CENTRE_NOMINAL as F
-    from tests.radiation.test_cnossos_rolling import NEW, OLD
+    from pipeline.validation.cnossos_cases import NEW, OLD
     worst = max(float(np.max(np.abs(g - w))) for _, g, w in res)
     summary = "\n".join(f"| {c.name} | `{c.source[0].rsplit('/', 1)[1]}` @ {c.source[1][:8]} | {_label(c)} | "
                         f"{'L_W,0 per vehicle' if c.per_vehicle else 'per-metre L_W of the test'} | "
