@@ -246,8 +246,11 @@ calibrate-suspension: | $(STAMP) ## fit the C20's vertical suspension damping to
 	$(PY) -m pipeline.validation.calibrate_suspension --study map --write
 
 # --- quality
-test: | $(STAMP) ## run the test suite (fast; validation tests are skipped)
-	$(PY) -m pytest -q tests
+# in random order (pytest-randomly): a new seed every run, printed first; SEED=<n> repeats an order
+test: | $(STAMP) ## run the test suite in random order (fast; validation tests are skipped); SEED=<n> repeats an order
+	@seed=$${SEED:-$$(od -An -N4 -tu4 /dev/urandom | tr -d ' ')}; \
+	echo "make test: the tests in random order, seed $$seed (SEED=$$seed make test repeats it)"; \
+	$(PY) -m pytest -q -p randomly --randomly-seed=$$seed tests
 
 # the writers first (pipeline/validation/writers/registry.py; each builds what it needs through Make, the
 # cached runs they share with the tests -- the limit-cycle tables, the 3D wheel -- are then up to date), then

@@ -1,4 +1,4 @@
-"""Friction-law benchmarks (solvers/contact/friction_laws, tang_falling): `run() -> str` gives the
+"""Friction-law benchmarks (solvers/contact/friction_laws, tang.falling): `run() -> str` gives the
 markdown section.
 
     OMP_NUM_THREADS=1 .venv/bin/python -m benchmarks friction_laws --update

@@ -132,7 +132,7 @@ def test_interaction_solver_plans_simulate_and_after(built):
 
 
 def test_mode_renderer_plans_shapes_and_report_only(built):
-    # wheel_stage's run_shapes imports the renderer; run_mesh/run_modes (same module) do not
+    # stages.wheel's run_shapes imports the renderer; run_mesh/run_modes (same module) do not
     mod, fn, _ = deps.ENTRIES["shapes"]
     renderer = [f for f in deps.stage_files(mod, fn) if f.startswith("postprocess/") and not f.endswith("__init__.py")]
     assert renderer

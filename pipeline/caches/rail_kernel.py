@@ -12,7 +12,7 @@ same key: a new wheel, friction or creepage never recomputes it, and the two mir
 points y^R = +-12 mm of the default and dy10 cases share one file (the kernel at -y^R is the
 one at +y^R with g23, g32 negated, exactly: ``solvers.rail.moving_kernel.mirror``).  Make knows the
 inputs through the greens rule (the rail file, the case file, the sources; the stage meshes the
-rail section itself, ``rail_stage.rail_mesh``); the key catches the
+rail section itself, ``stages.rail.rail_mesh``); the key catches the
 rest (a changed mesh or model code makes a new key, so a stale kernel is never loaded).
 
 Building it: the waveguide model of the rail (``build_rail_model``, ~5 s), its wave table on

@@ -166,7 +166,7 @@ def surface_arrays(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, gr
 
 
 def rail_arrays(pr: dict, y_r: float, v: float, dt: float) -> dict:
-    """``greens_stage.rail_greens``'s arrays at the rail model's point y_r (``greens_stage.rail_point``),
+    """``stages.greens.rail_greens``'s arrays at the rail model's point y_r (``stages.greens.rail_point``),
     a listed point's through ``listed_kernel``."""
     from pipeline.config.loader import config_hash
     from solvers.greens.grid import RAIL_F_MAX, RAIL_F_TAPER, RAIL_LAGS, RAIL_NT, rail_taper

@@ -4,11 +4,11 @@
 runs the time loop for every wheel with lateral creepage.  Here, per wheel of the leading bogie:
 
 1. the stability screen from arrays built in memory (``screen_context``): the contact stage's
-   arrays (``contact_stage.build_contact``: the same NORM table, compliance and friction curve; not its
+   arrays (``stages.contact.build_contact``: the same NORM table, compliance and friction curve; not its
    measured interpolation error, which no solver reads), the
    wheel's modal data at the contact point (the greens stage's ``contact_shape`` and damping rule; the
    wheel kernel, which neither the screen nor the time loop uses, is not built) and the moving rail
-   kernel from the rail's shared cache (``greens_stage.rail_greens``, built there when new).  No
+   kernel from the rail's shared cache (``stages.greens.rail_greens``, built there when new).  No
    artifact and no figure is written for a wheel the screen finds stable; its screen numbers are the
    curve stage's, bit for bit (tests/verdict/test_screen_first.py);
 2. only where the screen finds a growing wheel-mode pole: the time loop, as the simulate stage calls it
@@ -63,7 +63,7 @@ def wheel_modes(wheel: str, pw: dict) -> dict:
 
 
 def wheel_at_contact(pw: dict, modes: dict, y_w: float) -> dict:
-    """f, modal mass, damping and the shapes at the tread point y^W: ``greens_stage.wheel_greens``'s
+    """f, modal mass, damping and the shapes at the tread point y^W: ``stages.greens.wheel_greens``'s
     modal data without its kernel (the same calls, the same numbers)."""
     from geometry.wheel import tread_radius
     from solvers.wheel.receptance import contact_point, contact_shape, modal_damping
@@ -131,7 +131,7 @@ def screen(case: str, gamma_y: float):
 
 def time_loop_L_F2(case: str, ctx) -> float:
     """L_F2 (dB re 1 N) of the simulate stage's time loop of the case, from the screen's arrays: the
-    same call as ``simulate_stage.run_simulate`` (so the same number), without its files and figure."""
+    same call as ``stages.simulate.run_simulate`` (so the same number), without its files and figure."""
     from solvers.timeloop.interaction import WheelModes, contact_model, simulate
 
     from pipeline.config.case import resolve_case

@@ -15,7 +15,7 @@ from solvers.rail.response import evaluate_table, wave_sum_decay_rate, wave_tabl
 
 def load_rail(path) -> dict:
     """Read a rail parameter file (TOML) into a plain dict (no schema here; the pipeline's
-    configuration schema validates types (``rail_stage.load_rail_params``), geometry.rail's
+    configuration schema validates types (``stages.rail.load_rail_params``), geometry.rail's
     check_rail the geometry).  The pad's width defaults to the foot's."""
     import tomllib
 

@@ -36,7 +36,7 @@ TRACK_FRAME_MAX = np.radians(15.0)   # angle = "none" with a second zone steeper
 class SecondZone:
     """The second zone of a case: y^W, Y (track), y^R (rail frame), angle delta_b (rad), extra
     vertical separation e (m), rolling radius r_b (m), and ``gap_geometry`` (what
-    ``contact_stage.static_contact`` needs, in the zone's turned frame)."""
+    ``stages.contact.static_contact`` needs, in the zone's turned frame)."""
     y_wheel: float
     y_track: float
     y_rail: float

@@ -15,9 +15,9 @@ modules: from a stage's entry function, every name it references is resolved thr
 imports in scope (module-level or inside the function) to a function, class or module of
 the repository's packages, and so on transitively.  A module that is imported at all is a
 dependency (its module-level code runs on import), but only the functions reached in it
-are followed further.  So ``radiate_stage.run_radiate`` calling ``wheel_stage.load_wheel``
+are followed further.  So ``stages.radiate.run_radiate`` calling ``stages.wheel.load_wheel``
 makes radiate depend on what ``load_wheel`` uses, not on the mode renderer that
-``wheel_stage.run_shapes`` imports.  Over-approximations are harmless (an extra rebuild);
+``stages.wheel.run_shapes`` imports.  Over-approximations are harmless (an extra rebuild);
 the analysis misses only names built at run time (``getattr(m, "f" + x)``,
 ``importlib``), which the stages do not use.
 

@@ -126,8 +126,8 @@ if __name__ == "__main__":
 
     logging.basicConfig(level=logging.INFO, format="%(levelname)s %(name)s: %(message)s")
     if "--standard" in sys.argv[1:]:  # only the new-profile files (no wear fit)
-        from .rail_stage import load_rail_params
-        from .wheel_stage import load_wheel
+        from pipeline.stages.rail import load_rail_params
+        from pipeline.stages.wheel import load_wheel
 
         write_standard(load_wheel(WHEEL)[0], {r: load_rail_params(r)[0] for r in (RAIL, "60e1")})
     else:

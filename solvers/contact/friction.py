@@ -20,7 +20,7 @@ turn), evaluated by the njit function mu_rf().  A Coulomb curve is constant beyo
 node (the full-slip plateau).
 
 Any friction law (``solvers.contact.friction_laws``): with a slip-speed dependent law TANG
-bounds each element's traction by mu(|s_local|) p3 (``tang_falling``), and the global curve
+bounds each element's traction by mu(|s_local|) p3 (``tang.falling``), and the global curve
 of a falling law rises to a peak and falls.  Its nodes: the same bend nodes placed with
 the static coefficient mu(0) (the peak lies before full slip), then ``n_fall`` geometric
 nodes up to the ramp's end, no monotone guard, and shape-preserving (Fritsch-Carlson)

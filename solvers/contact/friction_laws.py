@@ -24,7 +24,7 @@ characteristic, as friction modifiers show; mu stays positive and at most MU_MAX
 CONTACT applies the falling laws through a friction memory (relaxation over a sliding
 distance MEMDST, user guide "Friction memory"): the optional parameters memdst [mm] (default 0:
 the instantaneous law) and mem_s0 [mm/s] (default 10, CONTACT's) of every law but coulomb; steady
-TANG applies it (``tang_falling``), the global curves' point contact does not need it.
+TANG applies it (``tang.falling``), the global curves' point contact does not need it.
 """
 from __future__ import annotations
 

@@ -240,7 +240,7 @@ def test_spin_matches_contact_fastsim_case():
 
 
 def test_slip_median_is_numpys():
-    # the preconditioner's median of D over the slip elements (tang_kernels._median, a quickselect):
+    # the preconditioner's median of D over the slip elements (tang.kernels._median, a quickselect):
     # numpy's median exactly, for odd and even counts, ties and sorted input
     from solvers.contact.tang.kernels import _median
 

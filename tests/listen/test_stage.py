@@ -48,13 +48,17 @@ def write_simulate(t, F, tf, Ff, case="default"):
                        stop_reason=np.array("limit cycle"))
 
 
-@pytest.fixture(scope="module")
-def build(tmp_path_factory):
-    b = tmp_path_factory.mktemp("build")
+def _linked_build(b):
+    """A build folder holding the real wheel modes and rail (links): the synthetic cases' stages run there."""
     for sub in ("wheels/c20/modes.npz", "rails/bv50/rail.npz"):
         (b / sub).parent.mkdir(parents=True)
         (b / sub).symlink_to(REAL / sub)
     return b
+
+
+@pytest.fixture(scope="module")
+def build(tmp_path_factory):
+    return _linked_build(tmp_path_factory.mktemp("build"))
 
 
 @pytest.fixture(scope="module")
@@ -234,7 +238,10 @@ def test_bad_receiver_on_the_command_line_writes_nothing(tmp_path):
     assert not (tmp_path / "build").exists()
 
 
-def test_non_squealing_case_is_refused_unless_silent_is_asked(tmp_build, monkeypatch):
+def test_non_squealing_case_is_refused_unless_silent_is_asked(tmp_path, monkeypatch):
+    """In a build folder of its own: its quiet simulate.npz must not replace the module's squeal."""
+    monkeypatch.setenv("SQUEAL_BUILD_DIR", str(_linked_build(tmp_path / "build")))
+    monkeypatch.setattr(artifacts, "load_npz", _cached_load_npz)
     monkeypatch.setattr(RS, "plot_radiation", no_plot)
     model = RS.load_radiation_model("default")
     t, F, tf, Ff = histories(model.f_r[mode(model, 2, 0)] - 1.0, a2=1.0)  # ~1 N RMS: L_F2 ~ 0 dB

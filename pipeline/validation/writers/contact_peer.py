@@ -149,7 +149,7 @@ CONTACT's transient rolling in contact-fixed coordinates (T=2) on the same conta
 per time step (DQ = dx = 0.4 mm), the slip velocity of the previous case as the start (INISLP = 0): step 1
 from no previous tractions (P=2), steps 1-20 CETA = -0.002, steps 21-40 CKSI = 0.001, CETA = -0.006 and
 spin CPHI = 6.25e-4 rad/mm.  The project: `tang_transient(..., law, state=...)` (the bounds iterated per
-step, `tang_falling.transient_falling`).  Largest force deviation over the 40 steps {100 * tr_dev.max():.3f} %
+step, `tang.falling.transient_falling`).  Largest force deviation over the 40 steps {100 * tr_dev.max():.3f} %
 (adhesion elements within {int(np.abs(tr[:, 3] - tr_ref[:, 3]).max())}); Coulomb friction at the static
 coefficient 0.33 instead of the law misses CONTACT by up to {100 * tr_cdev.max():.1f} %.
 

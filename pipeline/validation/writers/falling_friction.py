@@ -166,7 +166,7 @@ def write_kalker() -> str:
 Written by `pipeline/validation/writers/falling_friction.py` (`make validate`); asserted by
 `tests/interaction/test_falling_validation.py`. The default case in the time loop with Kalker's transient TANG every step (the reference model's
 contact: the spin as its rigid slip field phi (-y, x) v, the falling law as the local coefficient of every
-element at its own slip speed, peer `tang_falling`) against the regularized point contact (spin as
+element at its own slip speed, peer `tang.falling`) against the regularized point contact (spin as
 equivalent creepages, the law's global curve with its tail), each at most 8 s with the stage's early stop.
 Asserted for Coulomb friction and spin: the same dominant frequency (1 %), L_F2 within 3 dB, and the change
 from the Coulomb reference of the same sign in both loops; with the falling law: both loops squeal. With the

@@ -24,7 +24,7 @@ POSITIONS = {dy: thesis_contact_point(1e-3 * dy) for dy in (-15, -10)}
 
 def build_contact(dy_mm: int, dt: float, mu: float = MU):
     """The contact of a nominal position at the grid dx = v dt: the contact stage's computation
-    (pipeline/contact_stage.build_contact) for one friction coefficient."""
+    (pipeline/stages.contact.build_contact) for one friction coefficient."""
     from solvers.contact.static import DY, static_contact
     from pipeline.config.case_profiles import case_contact, contact_geometry
     from solvers.contact.compliance import compliance_table

@@ -46,6 +46,7 @@ WRITERS = (
     Writer("curving", W + "curving", ("90_curving.md",)),
     Writer("bem_spheres", W + "bem_spheres", ("71_bem_spheres.md",)),
     Writer("profiles", "pipeline.validation.profiles_doc", ("15_profiles.md",)),
+    Writer("rolling_cnossos", "pipeline.validation.rolling_cnossos_doc", ("95_rolling_cnossos.md",)),
     # by hand: `python -m pipeline.study.radius`, `python -m pipeline.validation.field`,
     # `python -m pipeline.validation.bem_check` (README, "Validation")
     Writer("radius", "pipeline.study.radius", ("91_verdict.md",), in_validate=False),

@@ -20,7 +20,7 @@ discrete s = w - v du/dx.  Coulomb's law per element:
 so a positive creepage gives a negative force (F2 = -c^2 G C22 gamma_y in the
 linear range; full slip F = -mu F3 w / |w|).  With a slip-speed dependent friction law
 (``friction_laws``) the bound is mu(|s_I|) p3_I at the element's own slip speed, mu(0) p3_I on
-stick: CONTACT's slip-velocity iteration around the solver below (``tang_falling``).
+stick: CONTACT's slip-velocity iteration around the solver below (``tang.falling``).
 
 Where the rigid slip is evaluated (spin).  The difference u_I - u_{I+dx} is the
 deformation the particle collects on its way from x_I + dx to x_I during the
@@ -66,7 +66,7 @@ transient rolling the start is extrapolated from the last steps (a polynomial
 of order 0 to 3: whichever would have predicted the last step best) and its
 sets updated as after a Newton step, so a time step takes one Newton step, two
 or three where elements change set.  A transient step runs whole in numba
-(tang_pcg.transient_step: the bookkeeping on the grid of tang_steps, the
+(tang.pcg.transient_step: the bookkeeping on the grid of tang.steps, the
 Newton-CG solve, the FFTs through rocket-fft); the displacements after a Newton
 step are the sum of its CG products (A lift(x) = sum alpha_k A d_k) when the
 step is linear to LINEAR tol (the traction circle's curvature below that), so
@@ -78,11 +78,11 @@ from __future__ import annotations
 
 import numpy as np
 
-# The code lives one idea a module: tang_state (solution, problem, options, predictor history),
-# tang_operator (FFT influence products, preconditioner), tang_kernels (numba element kernels),
-# tang_newton (the active-set Newton method, steady: GMRES), tang_pcg (transient: the Newton
-# method with its CG compiled whole), tang_rolling (one step's problem on the contact's window),
-# tang_steps (its bookkeeping on the grid, numba).
+# The code lives one idea a module: tang.state (solution, problem, options, predictor history),
+# tang.operator (FFT influence products, preconditioner), tang.kernels (numba element kernels),
+# tang.newton (the active-set Newton method, steady: GMRES), tang.pcg (transient: the Newton
+# method with its CG compiled whole), tang.rolling (one step's problem on the contact's window),
+# tang.steps (its bookkeeping on the grid, numba).
 from solvers.contact.friction_laws import FrictionLaw
 from solvers.contact.tang.newton import CoulombResult, solve_coulomb  # noqa: F401
 from solvers.contact.tang.operator import TangentialOperator, shifted_inverse, tangential_operator  # noqa: F401
@@ -106,7 +106,7 @@ def tang_steady(p3, dx, dy, v, mu, gamma_x=0.0, gamma_y=0.0, spin=0.0, *,
                 warm: TangentialContact | None = None, **options) -> TangentialContact:
     """Steady-state rolling (du/dt = 0) with normal pressures p3 (nx, ny) [Pa] on the grid
     dx (rolling direction) x dy [m], rolling speed v [m/s], Coulomb coefficient mu (or a
-    ``FrictionLaw``: the local coefficient mu(|s|) at the local slip speed, ``tang_falling``)
+    ``FrictionLaw``: the local coefficient mu(|s|) at the local slip speed, ``tang.falling``)
     and creepages gamma_x, gamma_y [-], spin [1/m].  `warm`: a previous solution as start.
     ``options``: the fields of ``TangOptions`` (E, nu, tol, w_offset, full_output)."""
     mu, law = _coefficient(mu)
@@ -123,7 +123,7 @@ def tang_transient(p3, dx, dy, v, mu, gamma_x=0.0, gamma_y=0.0, spin=0.0, *,
     step.  ``options`` as in tang_steady (the time loop needs no displacements outside the
     contact: full_output=False saves one FFT product per step).  `mu` a Coulomb coefficient or a
     ``FrictionLaw``: the local coefficient mu(|s|) at each element's slip speed of this step
-    (instantaneous, CONTACT's MEMDST = 0; ``tang_falling.transient_falling``)."""
+    (instantaneous, CONTACT's MEMDST = 0; ``tang.falling.transient_falling``)."""
     mu, law = _coefficient(mu)
     if law is not None and law.memory[0] > 0.0:
         raise ValueError(f"tang_transient: friction law '{law.name}' with memdst = {law.params['memdst']:g} mm: "

@@ -7,7 +7,7 @@ friction' and the iteration parameters INISLP, OMGSLP; source m_stang.f90; Volle
 Wear 314, for measured creep curves): an outer iteration on the slip speed around the
 Coulomb solver.  Given the slip speeds of the previous iterate, each element's bound is
 g = mu(|s|) p3 (stick elements: |s| = 0, the static coefficient mu(0)); the Coulomb problem
-with these bounds is solved (here: Kalker's active-set Newton method of ``tang_newton``,
+with these bounds is solved (here: Kalker's active-set Newton method of ``tang.newton``,
 warm-started from the previous iterate); its slip speeds give the next bounds.  At the fixed
 point every slip element carries |p| = mu(|s|) p3 opposite to its slip and every stick element
 |p| <= mu(0) p3: Coulomb's law with the local coefficient of the local slip speed.  The start
@@ -122,7 +122,7 @@ def solve_falling(op: TangentialOperator, ix, iy, r, p3, law: FrictionLaw, dt, p
 
 def transient_falling(step, law: FrictionLaw, p3, ix, iy, speed=None):
     """One transient step with the local coefficient mu(|s|) of `law`: the same outer iteration
-    around ``step(mu_el)`` (``tang_pcg.transient_step_law`` with the problem bound, mu_el (N,) the
+    around ``step(mu_el)`` (``tang.pcg.transient_step_law`` with the problem bound, mu_el (N,) the
     elements' coefficients), starting from the previous step's slip speeds `speed` (N,) [m/s]
     (None: zero).  Returns transient_step's tuple with the Newton and CG steps of all outer
     iterations and ``converged`` of the last solve and the bounds."""

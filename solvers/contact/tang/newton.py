@@ -1,6 +1,6 @@
 """Kalker's active-set Newton method for the Coulomb problem of TANG (notes in
 ``solvers.contact.tang``): the steady solve with its matrix-free restarted GMRES here, the
-transient one compiled whole with its CG in ``tang_pcg``."""
+transient one compiled whole with its CG in ``tang.pcg``."""
 from __future__ import annotations
 
 import math
@@ -115,7 +115,7 @@ def solve_coulomb(op: TangentialOperator, ix, iy, r, g, p, stick, *, tol=TOL, ma
     `stick`: start values (a previous solution, or zeros and all-stick).  Stops when no element
     changes set and the Newton step is below tol times the traction level (max(|p|)).  `warm`:
     the start is a previous solution (its sets are trusted for the first step).  Returns a
-    CoulombResult.  (Transient rolling, M = A: ``tang_pcg.coulomb_transient``.)"""
+    CoulombResult.  (Transient rolling, M = A: ``tang.pcg.coulomb_transient``.)"""
     ix = np.ascontiguousarray(ix, dtype=np.int64)
     iy = np.ascontiguousarray(iy, dtype=np.int64)
     N = ix.shape[0]

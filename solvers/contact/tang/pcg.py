@@ -1,9 +1,9 @@
 """The transient step of TANG compiled whole (notes in ``solvers.contact.tang``): Kalker's
 active-set Newton method with its preconditioned CG inner solver and the FFT products
-(``tang_operator.fft_convolve`` / ``fft_precondition``) in one numba function, and the step
-around it (``transient_step``: the bookkeeping of ``tang_steps``), so that a time step of a
+(``tang.operator.fft_convolve`` / ``fft_precondition``) in one numba function, and the step
+around it (``transient_step``: the bookkeeping of ``tang.steps``), so that a time step of a
 small contact is not spent in Python between the transforms.  Same Newton steps and stopping
-rules as the steady solve in ``tang_newton``."""
+rules as the steady solve in ``tang.newton``."""
 from __future__ import annotations
 
 import math
@@ -97,7 +97,7 @@ def _slip_of(ix, iy, p, r, s, bufs, hat, ny):
 @numba.njit(cache=True)
 def coulomb_transient(ix, iy, r, g, p, stick, u_start, warm, tol, max_iter, bufs, hat, ny, symbol, inv, a0,
                       scale):
-    """``tang_newton.solve_coulomb`` for transient rolling (M = A), compiled: p (N, 2), stick (N,)
+    """``tang.newton.solve_coulomb`` for transient rolling (M = A), compiled: p (N, 2), stick (N,)
     are the start and are overwritten by the solution; u_start (2, nx, ny) the predicted
     displacements of the start, or an array without rows.  Returns (slip s (N, 2), displacements
     u (2, nx + 1, ny) of the solution, Newton steps, CG steps, converged)."""
@@ -182,14 +182,14 @@ def transient_step(p3, ix, iy, win, kin, mu, ahead, P_old, stick_old, slip_old, 
 @numba.njit(cache=True)
 def transient_step_law(p3, ix, iy, win, kin, mu, mu_el, ahead, P_old, stick_old, slip_old, pred, U_old, hist_d,
                        hist_n, tol, max_iter, bufs, hat, symbol, inv, a0, scale):
-    """One transient step of ``tang_rolling.solve_rolling`` after its window is chosen, compiled:
+    """One transient step of ``tang.rolling.solve_rolling`` after its window is chosen, compiled:
     the rigid slip and transport term (ahead (2, nx, ny), or no rows: first step), the start from
     the previous solution P_old (no rows: traction-free) with its sets and the predicted change
     pred (2, 2, nx, ny) (no rows: none), the Coulomb solve on the window win = (i0, i1, j0, j1)
     with the operator's arrays, the solution on the grid and the predictor's differences after
-    the step (hist_d with rows: the previous step's, hist_n valid; ``tang_steps.differences``).
+    the step (hist_d with rows: the previous step's, hist_n valid; ``tang.steps.differences``).
     kin = (dx, dy, v, dt, gamma_x, gamma_y, spin, w_offset).  mu_el (N,): the elements' coefficients
-    of a slip-speed dependent law (``tang_falling``; no elements: Coulomb with mu).  Returns (P, S (2, nx, ny), stick,
+    of a slip-speed dependent law (``tang.falling``; no elements: Coulomb with mu).  Returns (P, S (2, nx, ny), stick,
     slip, U, ahead, f1, f2, Newton steps, CG steps, converged, d, n, order, prediction)."""
     nx, ny = p3.shape
     i0, i1, j0, j1 = win

@@ -64,7 +64,7 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
     if steady:
         P, S, st, sl, U, ahead, f1, f2, newton, krylov, converged = _steady(p3, ix, iy, win, kin, mu, op, P_old, warm,
                                                                         tol, law)
-    else:                                      # compiled whole (tang_pcg)
+    else:                                      # compiled whole (tang.pcg)
         U_old = warm.U if transient_prev else _EMPTY
         if transient_prev and h is not None and h.pred.shape[1:] == P_old.shape and h.window == win:
             hist_d, hist_n = h.d, h.n
@@ -98,9 +98,9 @@ def solve_rolling(p3, roll: Rolling, steady: bool, warm: TangentialContact | Non
 
 
 def _steady(p3, ix, iy, win, kin, mu, op, P_old, warm, tol, law=None):
-    """The steady solve on the window (GMRES in Python, ``tang_newton``; with a slip-speed
-    dependent `law` the outer iteration of ``tang_falling``), returning the fields of
-    ``tang_pcg.transient_step`` up to ``converged``."""
+    """The steady solve on the window (GMRES in Python, ``tang.newton``; with a slip-speed
+    dependent `law` the outer iteration of ``tang.falling``), returning the fields of
+    ``tang.pcg.transient_step`` up to ``converged``."""
     nx, ny = p3.shape
     i0, _, j0, _ = win
     N = ix.size

@@ -33,7 +33,7 @@ class TangentialContact(NamedTuple):
 
 
 class History(NamedTuple):
-    """The last transient steps' backward differences on the window (``tang_steps.differences``):
+    """The last transient steps' backward differences on the window (``tang.steps.differences``):
     d (2, ORDER, 2, wx, wy), row 0 tractions, row 1 displacements (d[:, 0] = the last change,
     d[:, 1] its change, ...), n of them valid; the order (0 .. ORDER) of the polynomial
     extrapolation that would have predicted the last step best, and its prediction of the next
