@@ -102,7 +102,7 @@ def test_norm_table_interpolation():
     err = table_midpoint_error(tab, h, DX, DX)
     assert np.nanmax(err["force"]) < 0.015                # F3^(2/3) is nearly linear in xi3
     work = err["xi3"] > 0.5 * H.delta                    # around the operating point
-    assert err["force"][work].max() < 0.002
+    assert err["force"][work].max() < 0.001              # docs/validation/30_contact.md: better than 0.1 %
     assert err["pressure"][work].max() < 0.15            # edge elements switch on between nodes
     assert err["pressure_rms"][work].max() < 0.03
     p = table_pressure(tab, err["xi3"][8])

@@ -171,8 +171,8 @@ and rescaled to the interpolated force), checked at the midpoints between nodes 
 
 {tab}
 
-The force is interpolated to better than 0.1 % around the operating point (1 % in the first interval, where the
-contact is a few elements); the pointwise pressure error comes from edge elements that enter the contact
+The force is interpolated to better than 0.1 % around the operating point (to 1.5 % in the first interval, where
+the contact is a few elements; `tests/contact/test_norm.py` asserts both); the pointwise pressure error comes from edge elements that enter the contact
 between two nodes (a direct NORM solve costs ~2 ms, see the benchmarks).
 
 ### Steady TANG vs Carter (2D limit)
@@ -282,7 +282,7 @@ The thesis' recipe [4.32-4.35] on the wheel/rail Hertzian contact (a = {H.a * 1e
 {comp}
 
 For a circle the recipe (ellipsoidal traction, 2/3 of the peak displacement) equals Mindlin's no-slip
-compliance exactly, and the code reproduces it within 0.2 %. The flexibility of Kalker's simplified theory,
+compliance exactly, and the code reproduces it within 0.2 % (`tests/contact/test_compliance.py`). The flexibility of Kalker's simplified theory,
 fitted to the linear-theory creep forces, is about half as compliant (ratio 1.8-2.1): about the factor of 2 the
 SPEC says does not matter (thesis 4.3.3, Fig. 4.10).
 """
