@@ -235,15 +235,23 @@ suppressed once the winner saturates the contact. Variants of the default case (
 """
 
 
-def squeal_section() -> str:
-    wheel, wc = wheel_at(POSITIONS[-10][0])
-    rows, res = [], {}
+def minus_10_runs():
+    """dy_WR = -10 mm with the real wheel and rail at dt and dt/2 (the contact built at each dx), 8 s each:
+    {dt: (run, measures, the limit cycle's fundamental, contact, contact info, wall s)}."""
+    wheel, _ = wheel_at(POSITIONS[-10][0])
+    out = {}
     for dt in (DT, DT / 2):
         c, info = build_contact(-10, dt)
         g = bv50_kernel(dt, V, y_rail=-0.012)
         r, wall = run_case(wheel, g, c, dt, duration=8.0)
-        m = r.measures()
-        f0, a0 = _fundamental(r.F_final[:, 1], dt)
+        out[dt] = (r, r.measures(), _fundamental(r.F_final[:, 1], dt)[0], c, info, wall)
+    return out
+
+
+def squeal_section() -> str:
+    wheel, wc = wheel_at(POSITIONS[-10][0])
+    rows, res = [], {}
+    for dt, (r, m, f0, c, info, wall) in minus_10_runs().items():      # c: dt/2's contact at the end
         res[dt] = (r, m, f0)
         rows.append(f"| {1e6 * dt:.0f} | {info['grid'][0]} x {info['grid'][1]} | "
                     f"{r.stop_reason} at {r.duration:.2f} s | "
