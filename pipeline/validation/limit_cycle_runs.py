@@ -149,12 +149,14 @@ def curve_check(sim) -> list[dict]:
 def mode_growth(case: str, label: str, gammas, mus) -> list[dict]:
     """The screen's growth rate (1/s) and frequency of the root continuing mode ``label`` at every
     (gamma_y, mu) of one position (``pipeline.study.screen.grid_roots``)."""
-    from pipeline.store import artifacts
+    from pipeline.caches.friction_curves import with_curves
     from pipeline.stages.stability import case_linear_model
+    from pipeline.store import artifacts
     from pipeline.study.screen import grid_roots
 
     c, lm0, labels, _ = case_linear_model(case)
     con, _ = artifacts.load_npz(paths.case_dir(case) / "contact.npz", "contact")
+    con = with_curves(case, con, [float(m) for m in mus])      # the curves at mus (the friction cache)
     rows = []
     for mu, gy, roots in grid_roots(lm0, con, c["kinematics"]["speed"], gammas, mus, c["friction"]["mu"]):
         r = [r for r in roots if r.mode >= 0 and labels[r.mode] == label]
@@ -171,7 +173,7 @@ def knees() -> list[dict]:
 
     rows = []
     for case in CASES:
-        ctx = load_context(case, radiation=False)
+        ctx = load_context(case, radiation=False, mus=SLICE_MUS)
         for mu in SLICE_MUS:
             cm = _curve(ctx, float(mu))
             rows.append({"case": case, "dy_wr": ctx.dy_wr, "mu": float(mu),
@@ -205,7 +207,7 @@ def scan(sim, gammas=SCAN_GAMMAS, mus=SCAN_MUS, with_screen: bool = True) -> lis
 
     rows = []
     for case in CASES:
-        ctx = load_context(case)
+        ctx = load_context(case, mus=mus)          # the curves at mus: the friction cache
         scr = {(round(r["gamma_y"], 6), round(r["mu"], 3)): r for r in screen_rows(case, gammas, mus)} \
             if with_screen else {}
         for gy in gammas:
