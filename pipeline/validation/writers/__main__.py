@@ -3,8 +3,8 @@
     .venv/bin/python -m pipeline.validation.writers [--jobs N] [--list] [name ...]
 
 Each writer of ``registry.WRITERS`` runs as its own process (``python -m <module>``; no PETSc, Gmsh or
-VTK state shared between them), ``--jobs`` at a time (default: the cores); its output goes to
-build/validation/<name>.log.  A writer that fails or does not write its fragments is reported with the
+VTK state shared between them, and a numba cache of its own), ``--jobs`` at a time (default: the cores); its
+output goes to build/validation/<name>.log.  A writer that fails or does not write its fragments is reported with the
 end of its log and the run exits 1 (docs/validation.md is assembled from the fragments either way).
 Names select writers (default: every one that ``make validate`` runs)."""
 from __future__ import annotations
@@ -21,9 +21,14 @@ from pipeline.validation.writers.registry import WRITERS
 
 
 def _start(w, logs):
+    """The writer's process; its numba cache in a folder of its own (build/validation/numba/<name>, kept between
+    runs): writers running side by side compiled the same functions into one cache, and a process then loaded
+    machine code that did not match its index entry (the two-point loop raised ZeroDivisionError in a clone,
+    and so did the unit test that loaded the cache after it; a fresh cache ran both)."""
     log = open(logs / f"{w.name}.log", "w")
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(logs / "numba" / w.name))
     proc = subprocess.Popen([sys.executable, "-m", w.module, *w.args], cwd=ROOT, stdout=log,
-                            stderr=subprocess.STDOUT)
+                            stderr=subprocess.STDOUT, env=env)
     return proc, log, time.perf_counter(), time.time()
 
 
