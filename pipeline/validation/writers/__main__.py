@@ -22,9 +22,10 @@ from pipeline.validation.writers.registry import WRITERS
 
 def _start(w, logs):
     """The writer's process; its numba cache in a folder of its own (build/validation/numba/<name>, kept between
-    runs): writers running side by side compiled the same functions into one cache, and a process then loaded
-    machine code that did not match its index entry (the two-point loop raised ZeroDivisionError in a clone,
-    and so did the unit test that loaded the cache after it; a fresh cache ran both)."""
+    runs).  Observed with one cache in the source tree shared by writers running side by side: the two-point
+    loop compiled there raised ZeroDivisionError, in the writer and in the unit test that loaded that cache
+    later, while the same calls ran with a fresh cache (most likely concurrent writes of the cache's index and
+    data by two processes)."""
     log = open(logs / f"{w.name}.log", "w")
     env = dict(os.environ, NUMBA_CACHE_DIR=str(logs / "numba" / w.name))
     proc = subprocess.Popen([sys.executable, "-m", w.module, *w.args], cwd=ROOT, stdout=log,
