@@ -45,12 +45,13 @@ def test_spin_changes_the_amplitude_not_the_occurrence(table):
 def test_kalker_loop_with_spin_and_a_falling_law():
     from pipeline.validation.writers.falling_friction import kalker_runs
 
-    runs, out, _ = kalker_runs()
-    ref = out[("reference (Coulomb)", "point")], out[("reference (Coulomb)", "kalker")]
-    for label, _, _ in runs[:2]:                     # Coulomb and spin: the same squeal in both loops
-        p, k = out[(label, "point")], out[(label, "kalker")]
+    k_runs = kalker_runs()
+    labels, out = k_runs["labels"], k_runs["measures"]
+    ref = out["reference (Coulomb)|point"], out["reference (Coulomb)|kalker"]
+    for label in labels[:2]:                         # Coulomb and spin: the same squeal in both loops
+        p, k = out[f"{label}|point"], out[f"{label}|kalker"]
         assert abs(p["f_dominant"] - k["f_dominant"]) < 0.01 * k["f_dominant"] and abs(p["L_F2"] - k["L_F2"]) < 3.0
         if label != "reference (Coulomb)":
             assert np.sign(p["L_F2"] - ref[0]["L_F2"]) == np.sign(k["L_F2"] - ref[1]["L_F2"]), label
-    fall = [out[(runs[2][0], tg)] for tg in ("point", "kalker")]
+    fall = [out[f"{labels[2]}|{tg}"] for tg in ("point", "kalker")]
     assert all(m["L_F2"] >= 10.0 for m in fall)      # the falling law: both loops squeal (the mode: see the text)

@@ -12,6 +12,7 @@ import time
 
 import numpy as np
 
+from pipeline.validation.cached import cached
 from pipeline.validation.writers import save_fragment
 
 KA = (0.1, 0.5, 1.0, 2.0, 5.0)
@@ -25,9 +26,15 @@ def _devices() -> list[str]:
     return ["numba"] + (["opencl"] if api.CPU_OPENCL_DRIVER_FOUND else [])
 
 
-def sphere_rows(devices=None, ka_values=KA):
-    """(sphere, rows): bempp's regular sphere and per backend and ka (device, ka, L_W pulsating BEM, exact,
-    oscillating BEM, exact, wall s), levels in dB re 1e-12 W."""
+def sphere_rows() -> dict:
+    """``_sphere_rows`` computed once per code (``pipeline.validation.cached``: the writer and
+    tests/radiation/test_bem_spheres.py share it)."""
+    return cached("bem_spheres", _sphere_rows, ("pipeline.validation.writers.bem_spheres:_sphere_rows",))
+
+
+def _sphere_rows(devices=None, ka_values=KA) -> dict:
+    """bempp's regular sphere's vertex count and per backend and ka the row (device, ka, L_W pulsating BEM,
+    exact, oscillating BEM, exact, wall s), levels in dB re 1e-12 W."""
     import bempp_cl.api as api
 
     from solvers.radiation import bem
@@ -46,12 +53,12 @@ def sphere_rows(devices=None, ka_values=KA):
             ep, eo = bem.pulsating_sphere_power(a, ka / a), bem.oscillating_sphere_power(a, ka / a)
             rows.append((dev, ka, bem.level(Wp), bem.level(ep), bem.level(Wo), bem.level(eo), wall))
     bem.use_device("numba")
-    return g, rows
+    return {"vertices": len(v), "rows": rows}
 
 
 def write() -> str:
-    g, rows = sphere_rows()
-    v = g.vertices.T
+    d = sphere_rows()
+    rows = d["rows"]
     table = "\n".join(f"| {dev} | {ka} | {lp:.2f} | {ep:.2f} | {lp - ep:+.2f} | {lo:.2f} | {eo:.2f} | {lo - eo:+.2f} | "
                       f"{w:.0f} |" for dev, ka, lp, ep, lo, eo, w in rows)
     text = f"""## The boundary-element solver on the analytic spheres (issue 28)
@@ -60,7 +67,7 @@ Written by `pipeline/validation/writers/bem_spheres.py` (`make validate`); the 0
 `tests/radiation/test_bem_spheres.py`. `solvers.radiation.bem.radiated_power` (bempp-cl
 0.4.2; exterior Burton-Miller (1/2 I - K + (i/k) W) p = -(V + (i/k)(1/2 I + K')) q,
 q = i w rho v_n, P1 Galerkin, dense LU; W = 1/2 Re(v^H M p)) on bempp's regular sphere of level {LEVEL}
-({len(v)} vertices, unit radius), unit normal velocity amplitude: pulsating (v_n = 1; exact
+({d['vertices']} vertices, unit radius), unit normal velocity amplitude: pulsating (v_n = 1; exact
 Re z = rho c (ka)^2 / (1 + (ka)^2)) and oscillating (v_n = cos theta; exact z = i rho c h_1(ka) / h_1'(ka)),
 with each of bempp's backends present (numba; OpenCL through pocl when installed, debian-packages.txt).
 Levels in dB re 1e-12 W; wall time per ka (both spheres; the first of each backend includes its kernels'

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from pipeline.validation.cached import cached
 from pipeline.validation.make import ensure_case
 from pipeline.validation.references.falling import falling_contact, falling_law
 from pipeline.validation.writers import save_fragment
@@ -40,7 +41,23 @@ def variants(contact_angle: float):
     return out
 
 
-def case_rows(case: str):
+def _inputs(case: str) -> list:
+    from pipeline.store import paths
+
+    return [paths.case_dir(case) / "contact.npz", paths.case_dir(case) / "greens.npz",
+            paths.wheel_dir("c20") / "modes.npz"]
+
+
+def case_rows(case: str) -> list[dict]:
+    """Per variant of the case (``variants``): the time loop's outcome, mode, L_F2, L_W and the screen's
+    fastest pole; computed once per code and artifacts (``pipeline.validation.cached``: the writer and
+    tests/interaction/test_falling_validation.py share it)."""
+    ensure_case(case)
+    return cached(f"falling_rows_{case}", lambda: _case_rows(case),
+                  ("pipeline.validation.writers.falling_friction:_case_rows",), _inputs(case))
+
+
+def _case_rows(case: str):
     from pipeline.store import paths
     from pipeline.stages.radiate import load_radiation_model, sound_power_of_forces
     from pipeline.stages.stability import case_linear_model
@@ -49,7 +66,6 @@ def case_rows(case: str):
     from solvers.stability.screen import linearise, screen
     from solvers.study import nearest_mode
 
-    ensure_case(case)
     c, lm, labels, f_open = case_linear_model(case)
     con = np.load(paths.case_dir(case) / "contact.npz")
     cm = contact_model(con, c["friction"]["mu"])
@@ -126,10 +142,17 @@ What the literature reports, and what the model shows:
     return save_fragment("67_falling_friction.md", text)
 
 
-def kalker_runs():
+def kalker_runs() -> dict:
     """The default case in Kalker's loop (transient TANG every step, the spin as its rigid slip field, the
     falling law local in every element) and in the point-contact loop (spin as equivalent creepages, the
-    law's global curve): (the runs (label, contact, extra settings), {(label, loop): measures}, table rows)."""
+    law's global curve): dict of the run labels, the measures per "label|loop" and the table rows; computed
+    once per code and artifacts (shared with tests/interaction/test_falling_validation.py)."""
+    ensure_case("default")
+    return cached("falling_kalker", _kalker_runs, ("pipeline.validation.writers.falling_friction:_kalker_runs",),
+                  _inputs("default"))
+
+
+def _kalker_runs() -> dict:
     import time
 
     from pipeline.store import paths
@@ -137,7 +160,6 @@ def kalker_runs():
     from solvers.timeloop.interaction import WheelModes, contact_model, simulate
 
     case = "default"
-    ensure_case(case)
     c, lm, labels, f_open = case_linear_model(case)
     cm = contact_model(np.load(paths.case_dir(case) / "contact.npz"), c["friction"]["mu"])
     wheel = WheelModes(lm.f_r, lm.modal_mass, lm.zeta, lm.phi)
@@ -153,14 +175,14 @@ def kalker_runs():
             r = simulate(wheel, lm.rail_kernel, con, dt=lm.dt, v=v, gamma_y=c["kinematics"]["gamma_y"], preload=lm.F3,
                          duration=c["time"]["duration"], tangential=tg, store_every=10, **extra)
             m = r.measures()
-            out[(label, tg)] = m
+            out[f"{label}|{tg}"] = m
             rows.append(f"| {label} | {tg} | {m['L_F2']:.2f} | {m['f_dominant']:.1f} | {r.stop_reason} after "
                         f"{r.n_steps * lm.dt:.2f} s | {time.perf_counter() - t0:.0f} s |")
-    return runs, out, rows
+    return {"labels": [r[0] for r in runs], "measures": out, "rows": rows}
 
 
 def write_kalker() -> str:
-    _, _, rows = kalker_runs()
+    rows = kalker_runs()["rows"]
     text = """## Falling friction and spin in Kalker's loop (issue 26)
 
 Written by `pipeline/validation/writers/falling_friction.py` (`make validate`); asserted by
