@@ -21,6 +21,7 @@ import numpy as np
 from solvers.constants import SQUEAL_LEVEL_DB
 
 from pipeline.store.paths import ROOT
+from pipeline.validation.cached import cached
 from pipeline.validation.make import ensure_case, make_targets
 from pipeline.validation.references.falling import falling_contact
 from pipeline.validation.references.growth import linear_phase, measured_growth, pencil_growth
@@ -38,7 +39,20 @@ def build() -> None:
     make_targets("study", STUDY="map-screened", QUICK="1", WORKERS="2")
 
 
+def _inputs(case: str) -> list:
+    from pipeline.store import paths
+
+    return [paths.case_dir(case) / "contact.npz", paths.case_dir(case) / "greens.npz"]
+
+
 def run_case(case):
+    """``_run_case`` once per code and artifacts (``pipeline.validation.cached``, shared with the test)."""
+    ensure_case(case)
+    return cached(f"stability_{case}", lambda: _run_case(case), ("pipeline.validation.writers.stability:_run_case",),
+                  _inputs(case))
+
+
+def _run_case(case):
     """(unstable screen roots as (label, f, sigma screen, sigma measured), the squealing mode, its frequency,
     the linear phase's length) of a case at its own settings."""
     from pipeline.store import paths
@@ -167,6 +181,13 @@ FALLING = (("mild", (0.35, 0.30, 1.0), {}, 1e-9), ("moderate", (0.35, 0.25, 0.5)
 
 
 def run_falling(case):
+    """``_run_falling`` once per code and artifacts (shared with the test)."""
+    ensure_case(case)
+    return cached(f"stability_falling_{case}", lambda: _run_falling(case),
+                  ("pipeline.validation.writers.stability:_run_falling",), _inputs(case))
+
+
+def _run_falling(case):
     """Per falling-law variant: the screen's unstable poles against the time loop's growth rates
     (matrix pencil, and the windowed demodulation of the Coulomb table beside it) measured from
     steady rolling with a kick of 1e-9 N s (mild) or 1e-13 N s (moderate: the faster growth leaves
