@@ -162,7 +162,7 @@ def write() -> str:
         f"{dmax:.1e} | {'yes' if bitwise else 'no'} |",
         "",
         f"The default case through the two-point loop: L_F2 = {m2['L_F2']:.6f} dB, {m2['f_dominant']:.6f} Hz "
-        f"(one-point: {m1['L_F2']:.6f} dB, {m1['f_dominant']:.6f} Hz; the reference 53.190321 dB, 434.764102 Hz). "
+        f"(one-point: {m1['L_F2']:.6f} dB, {m1['f_dominant']:.6f} Hz; the recorded reference results, tests/reference/reference_results.json). "
         f"Two identical coincident patches (same shapes, every rail block the same kernel) are one patch of twice the "
         f"normal stiffness (NORM table F3 doubled, compliances halved): summed forces equal to {r2['max_rel']:.1e} "
         f"relative over 0.3 s. The two-point screen (6 x 6: dF1, dF2, dF3 per patch, 4 x 4 structures) with the "
