@@ -11,6 +11,7 @@ import logging
 import sys
 
 from pipeline.stages import STAGES
+from pipeline.store.atomic import interrupted, watch_interrupts
 
 # the stages that run numba code (pipeline/numba_setup.py)
 NUMBA_STAGES = {name for name, st in STAGES.items() if st.numba}
@@ -19,8 +20,12 @@ NUMBA_STAGES = {name for name, st in STAGES.items() if st.numba}
 def main(argv=None) -> int:
     """The CLI; Ctrl-C (KeyboardInterrupt) anywhere ends it with one line and exit code 130 (the
     artifacts written before are whole: every write is atomic)."""
+    watch_interrupts()
     try:
-        return _main(argv)
+        rc = _main(argv)
+        if interrupted():                           # swallowed by a library on the way (pipeline.store.atomic)
+            raise KeyboardInterrupt
+        return rc
     except KeyboardInterrupt:
         stage = next((a for a in (sys.argv[1:] if argv is None else argv) if a in STAGES), "the stage")
         print(f"interrupted: {stage} stopped; the artifacts it had finished are kept, nothing half-written",
