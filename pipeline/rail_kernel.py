@@ -31,6 +31,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from . import artifacts, paths
+from .blas_threads import pinned
 from .code_hash import code_hash
 
 log = logging.getLogger("pipeline.greens")
@@ -40,15 +41,17 @@ KIND = "rail-moving-kernel"
 CODE = ["solvers/waveguide.py", "solvers/wfe/assembly.py", "solvers/wfe/family.py", "solvers/wfe/section.py",
         "solvers/wfe/waves.py", "solvers/rail_model.py", "solvers/rail_reduced.py", "solvers/rail_response.py",
         "solvers/green.py", "solvers/kropp.py", "solvers/band_fit.py", "solvers/moving_kernel.py", "geometry/rail.py",
-        "geometry/rail_mesh.py", "pipeline/rail_kernel.py", "pipeline/rail_model.py"]
+        "geometry/rail_mesh.py", "pipeline/rail_kernel.py", "pipeline/rail_model.py", "pipeline/blas_threads.py"]
 
 
 def kernel_config(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, grid: dict) -> dict:
     """Everything the kernel at |y_r| depends on (the cache key is its hash).  grid: n_t, n_lags,
-    f_max, f_taper (pipeline.greens_stage's RAIL_* settings)."""
+    f_max, f_taper (pipeline.greens_stage's RAIL_* settings).  |y_r| exactly, as the kernel is built
+    at it: rounded (to 1 nm, as it was), two points of one bin shared a key and the first builder's
+    kernel (8e-9 of its peak per 0.1 nm at 10.3 mm, issue 34)."""
     mesh = paths.rail_dir(pr["name"]) / "section.msh"
     return {"rail": rail_hash, "mesh": hashlib.sha256(mesh.read_bytes()).hexdigest()[:16],
-            "code": code_hash(CODE), "y_r_abs": round(abs(float(y_r)), 9), "v": float(v), "dt": float(dt),
+            "code": code_hash(CODE), "y_r_abs": abs(float(y_r)), "v": float(v), "dt": float(dt),
             **{k: (int(x) if k.startswith("n_") else float(x)) for k, x in grid.items()}}
 
 
@@ -87,9 +90,11 @@ def rail_kernel(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, grid:
     return arrays, cached
 
 
+@pinned
 def wave_table_threads(model, freqs, y: float, workers: int = 2) -> dict:
     """``wave_table(model, freqs, points=[y])`` computed over ``workers`` frequency slices in
-    threads (each frequency is independent: the same numbers as one call)."""
+    threads (each frequency is independent: the same numbers as one call), OpenBLAS on one thread in
+    each (``blas_threads``: the bits do not follow the process's thread count)."""
     from solvers.rail_response import wave_table
 
     parts = np.array_split(np.asarray(freqs, float), max(1, min(workers, len(freqs))))
@@ -115,9 +120,11 @@ def table_transfer(T: dict, inside: np.ndarray, w: np.ndarray):
     return transfer
 
 
+@pinned
 def build_kernel(pr: dict, y_r: float, v: float, dt: float, grid: dict, taper) -> dict:
     """Moving kernel g_mov (n_lags, 2, 2), the fixed-point kernel, its decay, the tail ratio and
-    the point receptance at head point y_r >= 0 (module notes)."""
+    the point receptance at head point y_r >= 0 (module notes); OpenBLAS on one thread
+    (``blas_threads``)."""
     from solvers.green import decayed, frequency_grid, green_from_receptance
     from solvers.moving_kernel import moving_green_waves
     from .rail_model import build_rail_model
