@@ -179,8 +179,11 @@ def characteristic(model: LinearModel, s: complex, filt=None) -> complex:
 # ------------------------------------------------------------------------------ root finding
 
 def _secant(fun, s0: complex, tol: float = 1e-10, max_iter: int = 60) -> complex | None:
-    """Secant iteration on a complex analytic function: a root (relative step below ``tol`` and
-    |fun| below 1e-6 of its value at the start) or None."""
+    """Secant iteration on a complex analytic function: a root (relative step below ``tol``, |fun|
+    below 1e-6 of its value at the start and below 1e-2 of its values 1e-6 |s| away) or None.  The
+    last test tells a zero from a point where a long jump out and back made the step small (the
+    difference quotient taken across the jump): there |fun| is no smaller than around it (issue 34:
+    r300/a2o's (6,0,a) 'root' at sigma = +28 1/s, |D| = 8.8; ``solvers.stability_nyquist``)."""
     s1 = s0 * (1 + 1e-6) + 1e-3
     with np.errstate(all="ignore"):
         f0, f1 = fun(s0), fun(s1)
@@ -193,7 +196,10 @@ def _secant(fun, s0: complex, tol: float = 1e-10, max_iter: int = 60) -> complex
                 return None
             s0, f0, s1, f1 = s1, f1, s2, fun(s2)
             if abs(s1 - s0) <= tol * max(abs(s1), 1.0):
-                return s1 if abs(f1) <= 1e-6 * scale else None
+                if abs(f1) > 1e-6 * scale:
+                    return None
+                h = 1e-6 * max(abs(s1), 1.0)
+                return s1 if abs(f1) <= 1e-2 * min(abs(fun(s1 + h)), abs(fun(s1 + 1j * h))) else None
     return None
 
 
@@ -291,14 +297,24 @@ def track_roots(model: LinearModel, basis: Basis | None = None, polish: bool = T
     return [Root(s.imag / (2 * np.pi), s.real, -1) for s in sorted(found, key=lambda s: s.imag)]
 
 
-def screen(model: LinearModel, basis: Basis | None = None, polish: bool = True) -> list[Root]:
-    """All closed-loop poles the screen seeks, fastest growing first."""
+def screen(model: LinearModel, basis: Basis | None = None, polish: bool = True,
+           certify: bool | None = None) -> list[Root]:
+    """All closed-loop poles the screen seeks, fastest growing first.  ``certify`` (default: with
+    ``polish``): the growing ones certified by the argument principle, the missed ones added
+    (``solvers.stability_nyquist``; the map's fast path, polish=False, keeps the search alone)."""
     b = basis if basis is not None else Basis(model)
     wheel = wheel_roots(model, b, polish)
     # a track root found again at a wheel root (the grid also sees the modes between 20 and 400 Hz)
     track = [t for t in track_roots(model, b, polish)
              if all(abs(complex(t.sigma, t.f_hz) - complex(w.sigma, w.f_hz)) > 1e-3 * w.f_hz + 0.5 for w in wheel)]
-    return sorted(wheel + track, key=lambda r: -r.sigma)
+    roots = sorted(wheel + track, key=lambda r: -r.sigma)
+    if not (polish if certify is None else certify):
+        return roots
+    from .stability_nyquist import Contour, certify as certified   # it builds on this module: imported here
+
+    if getattr(b, "contour", None) is None:
+        b.contour = Contour(model, b.filt)                          # the structure's part, shared by operating points
+    return certified(model, roots, b.contour)[0]
 
 
 def operating_point(model: LinearModel, contact, *, v: float, gamma_y: float, gamma_x: float = 0.0,
