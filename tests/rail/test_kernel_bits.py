@@ -49,11 +49,17 @@ np.savez(sys.argv[4], **{k: a[k] for k in %r})
 """ % (KEYS,)
 
 
-def _make_side(build: Path, y: float, out: Path) -> dict:
+def _start(build: Path, code: str, *args: str) -> subprocess.Popen:
+    """A subprocess as Make runs a stage (OMP_NUM_THREADS=1) building in ``build``; it runs while this
+    process builds its own copy."""
     env = dict(os.environ, SQUEAL_BUILD_DIR=str(build), OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
-    r = subprocess.run([sys.executable, "-c", MAKE_SIDE, repr(y), repr(V), repr(DT), str(out)], cwd=ROOT, env=env,
-                       capture_output=True, text=True, timeout=900)
-    assert r.returncode == 0, r.stderr[-2000:]
+    return subprocess.Popen([sys.executable, "-c", code, *args], cwd=ROOT, env=env, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+
+
+def _wait(proc: subprocess.Popen, out: Path) -> dict:
+    _, err = proc.communicate(timeout=900)
+    assert proc.returncode == 0, err[-2000:]
     return dict(np.load(out))
 
 
@@ -89,9 +95,9 @@ def test_listed_point_kernel_same_bits_whoever_builds_it(tmp_path, monkeypatch):
     """y^R = -12 mm (a node of the rail file's contact.y: the greens stage's own model and wave table
     against the screen-first path's cached point table), 50 km/h: bit for bit, and one kernel file
     under one key in either folder."""
-    make = _make_side(_fresh(tmp_path / "make"), -0.012, tmp_path / "make.npz")
+    proc = _start(_fresh(tmp_path / "make"), MAKE_SIDE, "-0.012", repr(V), repr(DT), str(tmp_path / "make.npz"))
     mine = _pytest_side(_fresh(tmp_path / "pytest"), -0.012, monkeypatch)
-    _same(make, mine)
+    _same(_wait(proc, tmp_path / "make.npz"), mine)
     files = [_kernel_files(tmp_path / d) for d in ("make", "pytest")]
     assert [f.name for f in files[0]] == [f.name for f in files[1]] and len(files[0]) == 1
 
@@ -116,10 +122,7 @@ def test_surface_table_same_bits_whoever_builds_it(tmp_path, monkeypatch):
     every node file bit for bit, and the point's waves."""
     y = 0.010300367802283973
     make, mine = _fresh(tmp_path / "make"), _fresh(tmp_path / "pytest")
-    env = dict(os.environ, SQUEAL_BUILD_DIR=str(make), OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
-    r = subprocess.run([sys.executable, "-c", TABLE_SIDE, repr(y), repr(COARSE), str(tmp_path / "make.npz")],
-                       cwd=ROOT, env=env, capture_output=True, text=True, timeout=900)
-    assert r.returncode == 0, r.stderr[-2000:]
+    proc = _start(make, TABLE_SIDE, repr(y), repr(COARSE), str(tmp_path / "make.npz"))
     from pipeline.blas_threads import blas_threads, set_blas_threads
     from pipeline.config import config_hash
     from pipeline.rail_stage import load_rail_params
@@ -134,7 +137,7 @@ def test_surface_table_same_bits_whoever_builds_it(tmp_path, monkeypatch):
     finally:
         if before is not None:
             set_blas_threads(before)
-    ref = np.load(tmp_path / "make.npz")
+    ref = _wait(proc, tmp_path / "make.npz")
     assert np.array_equal(ref["k"], k) and np.array_equal(ref["a"], a)
     tables = [sorted((d / "rails" / "bv50" / "surface").glob("*/*.npz")) for d in (make, mine)]
     assert [p.relative_to(make) for p in tables[0]] == [p.relative_to(mine) for p in tables[1]]
