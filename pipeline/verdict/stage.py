@@ -123,8 +123,11 @@ def wheel_verdict(info: CurveInfo, p: WheelPoint, *, what_ifs: bool = True) -> d
         lis = dict(np.load(d / "listen.npz", allow_pickle=False))
         w = models.ctx.wheel
         i = nearest_mode(f, w["f"], models.ctx.flexible, 0.05, (1, 2, 3))
+        from ..listen_stage import listen_files, receiver_tag
+
+        wav = listen_files(name, receiver_tag(lis["distance"], lis["height"]))["wav"]   # listen_<receiver>.wav
         row |= {"mode": models.ctx.label(i) if i is not None else "", "L_W": float(rad["L_W"]),
-                "L_pA": float(lis["L_pA"]), "wav": str(d / "listen.wav")}
+                "L_pA": float(lis["L_pA"]), "wav": str(wav)}
         if what_ifs:
             fr = friction_what_if(models)
             row["mu_threshold"] = fr.threshold
