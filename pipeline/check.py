@@ -7,7 +7,8 @@ the case, the wheel or the rail file: present, readable, of the right kind), the
 of the profiles at its wheelset offset (flange contact is refused, as the contact stage does),
 the rail model's head node for its contact point (as the greens stage does), the second contact
 zone of a two-point case (``pipeline.second_point.second_zone``) and its time step
-(``time_step_problem``).  Notes (not errors): a positive lateral creepage (over-radial).
+(``time_step_problem``).  Notes (not errors): an over-radial wheelset (negative angle of attack),
+an outer wheel's positive lateral creepage.
 """
 from __future__ import annotations
 
@@ -44,9 +45,25 @@ def profile_problems(case: str, c: dict, pw: dict, pr: dict) -> None:
             raise ConfigError(str(src), [(key, name, f"not a {kind} profile (its kind is {prof.kind!r})")])
 
 
+def outer_wheel(c: dict) -> bool:
+    """Whether the case is a curve wheel on the outer rail (the curve stage names it ``<curve>/a<k>o``,
+    ``pipeline.verdict.operating.WHEELS``); an ordinary case file is, like the reference's, an inner wheel."""
+    cw = paths.curve_wheel(str(c.get("name", "")))
+    return cw is not None and cw[1].endswith("o")
+
+
 def over_radial_note(c: dict) -> str | None:
-    """An explanation when the case's lateral creepage is positive (over-radial), else None."""
+    """An explanation when the case's wheelset is over-radial (negative angle of attack), else None.
+    gamma_y is in the wheel's contact frame, direction 2 toward that wheel's field side (SPEC 2;
+    ``solvers/curving/summary.py``): the yaw psi gives gamma_y ~ -psi at the inner wheel and ~ +psi at the
+    outer wheel, so over-radial is gamma_y > 0 at an inner wheel and gamma_y < 0 at an outer wheel."""
     gy = c["kinematics"]["gamma_y"]
+    if outer_wheel(c):
+        if gy >= 0:
+            return None
+        return (f"gamma_y = {gy:+.4g} < 0 at an outer wheel: an over-radial wheelset (negative angle of attack, e.g. "
+                f"a trailing axle or a wheelset steered past radial); the reference model (Zenzerovic 2014, SPEC 6) "
+                f"studies under-radial leading wheelsets: results are outside the reference's validation")
     if gy <= 0:
         return None
     return (f"gamma_y = {gy:+g} > 0: an over-radial wheelset (negative angle of attack, e.g. a trailing axle or a "
@@ -55,6 +72,16 @@ def over_radial_note(c: dict) -> str | None:
             f"chain computes it like any creepage (the friction curves are even in the slip), but the coupling "
             f"of lateral and vertical wheel motion that drives squeal acts with the opposite sign: results are "
             f"outside the reference's validation")
+
+
+def outer_wheel_note(c: dict) -> str | None:
+    """A short note for the outer wheel of an under-radial wheelset (gamma_y > 0 in its frame), else None."""
+    gy = c["kinematics"]["gamma_y"]
+    if not outer_wheel(c) or gy <= 0:
+        return None
+    return (f"gamma_y = {gy:+.4g} > 0 at an outer wheel of an under-radial wheelset (the creep force on the rail "
+            f"points to its gauge side): the mirror image of the reference's inner wheel (gamma_y < 0), outside "
+            f"its validation")
 
 
 def run_check(case: str, wheel: str | None, rail: str | None) -> list[str]:
@@ -96,9 +123,9 @@ def run_check(case: str, wheel: str | None, rail: str | None) -> list[str]:
         raise ConfigError(str(case_path), [("time.dt", c["time"]["dt"], problem)])
     lines = [f"wheel {c['wheel']}, rail {c['rail']} and case {case}: configuration OK (friction {friction.text}; "
              f"contact at y^W = {1e3 * geo.contact.y_wheel:+.2f} mm, y^R = {1e3 * geo.contact.y_rail:+.2f} mm)"]
-    note = over_radial_note(c)
-    if note:
-        lines.append(f"note: {note}")
+    for note in (over_radial_note(c), outer_wheel_note(c)):
+        if note:
+            lines.append(f"note: {note}")
     return lines
 
 

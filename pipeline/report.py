@@ -317,10 +317,11 @@ def run_report(case: str) -> str:
                 f"Case file `{paths.shown(cpath)}`: wheel `{c['wheel']}`, rail `{c['rail']}`, dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm, "
                 f"{rc.friction.text}, gamma_y = {c['kinematics']['gamma_y']}, v = {3.6 * c['kinematics']['speed']:.0f} km/h.\n",
                 wheel_section(c["wheel"], figdir), rail_section(c["rail"], figdir)]
-    from .check import over_radial_note
+    from .check import outer_wheel_note, over_radial_note
 
-    if over_radial_note(c):
-        sections.insert(1, f"**Note.** {over_radial_note(c)}.\n")
+    note = over_radial_note(c) or outer_wheel_note(c)
+    if note:
+        sections.insert(1, f"**Note.** {note}.\n")
     from .contact_stage import contact_inputs
 
     sections.append(contact_section(case, contact_inputs(case)[3], figdir, c))
