@@ -87,7 +87,7 @@ def outer_wheel_note(c: dict) -> str | None:
 def run_check(case: str, wheel: str | None, rail: str | None) -> list[str]:
     """Check the case (and ``wheel``, ``rail`` when given apart); return the lines to print.
     Raises ConfigError (one line) at the first problem."""
-    from .config import ConfigError, load
+    from .config import ConfigError, load, named_file
     from .friction import case_friction
     from .greens_stage import rail_point
     from .profiles import contact_geometry
@@ -96,9 +96,9 @@ def run_check(case: str, wheel: str | None, rail: str | None) -> list[str]:
     from .wheel_stage import load_wheel
 
     if wheel:
-        load_wheel(wheel)
+        named_file("command line", "--wheel", wheel, load_wheel)
     if rail:
-        load_rail_params(rail)
+        named_file("command line", "--rail", rail, load_rail_params)
     try:
         case_path = paths.case_file(case)
     except ValueError as e:
@@ -108,8 +108,8 @@ def run_check(case: str, wheel: str | None, rail: str | None) -> list[str]:
         raise ConfigError(str(case_path), detail=why)
     c = load(case_path, CASE)
     friction = case_friction(c, case)
-    pw, _ = load_wheel(c["wheel"])
-    pr, _ = load_rail_params(c["rail"])
+    pw, _ = named_file(case_path, "wheel", c["wheel"], load_wheel)
+    pr, _ = named_file(case_path, "rail", c["rail"], load_rail_params)
     profile_problems(case, c, pw, pr)
     geo = contact_geometry(case, c, pw, pr)                 # the rigid contact search (flange contact refused)
     where = f"case '{case}', dy_WR = {1e3 * c['contact']['dy_wr']:+.1f} mm (y^W = {1e3 * geo.contact.y_wheel:+.2f} mm)"

@@ -40,11 +40,11 @@ UNITS = {"dy_wr": "m", "angle_of_attack": "rad", "spin": "1/m", "y_wheel": "m", 
 
 def one_line(e):
     """A ConfigError with its problems on one line (file: key = value: expected range; ...)."""
-    from ..config import ConfigError
+    from ..config import ConfigError, issue_text
 
     if not e.errors:
         return e
-    return ConfigError(e.source, detail="; ".join(f"{k} = {v!r}: expected {a}" for k, v, a in e.errors))
+    return ConfigError(e.source, detail="; ".join(issue_text(*x) for x in e.errors))
 
 
 def solve(curve: str):
