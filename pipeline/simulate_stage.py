@@ -46,18 +46,32 @@ def case_arrays(case: str):
     return c, cfg, con, gr, WheelModes(gr["wheel_f"], gr["wheel_mass"], gr["wheel_zeta"], gr["wheel_phi"])
 
 
+def seconds(t: float) -> str:
+    """A duration for the log, 2 significant digits below 10 s ('0.047 s', '1.3 s', '42 s')."""
+    return f"{t:.2g} s" if t < 10 else f"{t:.0f} s"
+
+
+def loop_time(t_stage: float, t_loop: float, n_steps: int) -> str:
+    """'in <stage> (time loop <loop>, <us> us/step)': the stage's wall time (loading, the loop, its figure,
+    writing) and the time loop's own (``InteractionResult.wall``; numba, microseconds a step)."""
+    return (f"in {seconds(t_stage)} (time loop {seconds(t_loop)}, {1e6 * t_loop / max(n_steps, 1):.2g} us/step)")
+
+
 def run_simulate(case: str) -> dict:
+    import time
+
     from solvers.interaction import contact_model, simulate
 
     from .friction import case_friction
 
+    t0 = time.perf_counter()
     c, cfg, con, gr, wheel = case_arrays(case)
     out = paths.case_dir(case)
     cm = contact_model(con, case_friction(c, case))
     if c["contact"].get("points", 1) == 2:  # [contact] points = 2: the two-point loop (pipeline/two_point_simulate.py)
         from .two_point_simulate import simulate_two_point_case
 
-        return simulate_two_point_case(case, c, con, gr, cm, wheel, cfg)
+        return simulate_two_point_case(case, c, con, gr, cm, wheel, cfg, t0)
     res = simulate(wheel, gr["rail_kernel"], cm, dt=c["time"]["dt"], v=c["kinematics"]["speed"],
                    gamma_y=c["kinematics"]["gamma_y"], gamma_x=c["kinematics"]["gamma_x"],
                    spin=c["kinematics"].get("spin", 0.0),
@@ -73,9 +87,10 @@ def run_simulate(case: str) -> dict:
         arrays["contact_angle_wheel"] = np.float64(gr["contact_angle_wheel"])
     plot_forces(res, m, out / "simulate.png", case)
     artifacts.save_npz(out / "simulate.npz", "simulate", cfg, **arrays)
-    log.info("simulate %s: %d steps (%.2f s rolling, %s) in %.1f s; L_F2 = %.1f dB, dominant %.1f Hz -> %s",
-             case, res.n_steps, res.duration, res.stop_reason, res.wall, m["L_F2"], m["f_dominant"],
-             out / "simulate.npz")
+    log.info("simulate %s: %d steps (%.2f s rolling, %s) %s; L_F2 = %.1f dB, dominant %.1f Hz -> %s",
+             case, res.n_steps, res.duration, res.stop_reason, loop_time(time.perf_counter() - t0, res.wall,
+                                                                         res.n_steps),
+             m["L_F2"], m["f_dominant"], out / "simulate.npz")
     return arrays
 
 
