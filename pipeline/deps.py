@@ -271,8 +271,8 @@ def main(argv: list[str]) -> int:
     elif not argv:
         sys.stdout.write(makefile_fragment())
     else:
-        print("usage: python pipeline/deps.py [--case pipeline/cases/<case>.toml | --curve pipeline/curves/<curve>.toml]",
-              file=sys.stderr)
+        print("usage: python pipeline/deps.py [--case pipeline/cases/<case>.toml | "
+              "--curve pipeline/curves/<curve>.toml]", file=sys.stderr)
         return 2
     return 0
 

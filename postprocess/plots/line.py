@@ -61,8 +61,9 @@ def _conditions(cond) -> list[str]:
 
 def level_radius_figure(radius, level, squeals, cond, bands, level_name: str = "L_pA at 7.5 m (dB(A))"):
     """Level against radius: filled markers squeal (the loudest wheel's level), open markers on the
-    axis floor labelled "quiet" (not a level: ``_quiet_floor``) are quiet curves; one marker and colour per friction condition; ``bands`` [(R_lo, R_hi, text)]:
-    the rules' radius classes shaded (darker first), their penalties in the legend."""
+    axis floor labelled "quiet" (not a level: ``_quiet_floor``) are quiet curves; one marker and colour
+    per friction condition; ``bands`` [(R_lo, R_hi, text)]: the rules' radius classes shaded (darker
+    first), their penalties in the legend."""
     plt = _plt()
     R, L, S, C = (np.asarray(radius, float), np.asarray(level, float), np.asarray(squeals, bool),
                   np.asarray(cond, str))
