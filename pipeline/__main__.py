@@ -45,7 +45,7 @@ def _main(argv=None) -> int:
                     "(default: default)")
     ap.add_argument("--workers", type=int, default=None,
                     help="processes for the harmonic solves, Dask workers of a study's local cluster (default: cores)")
-    ap.add_argument("--curve", default=None, help="curve: curve file pipeline/curves/<name>.toml")
+    ap.add_argument("--curve", default=None, help="curve, check: curve file pipeline/curves/<name>.toml")
     ap.add_argument("--no-what-ifs", action="store_true", help="curve: skip the mitigation what-ifs")
     ap.add_argument("--study", default="map", help="study file pipeline/studies/<name>.toml (default: map)")
     ap.add_argument("--quick", action="store_true", help="study: the coarser grid / shorter runs for a quick look")
@@ -81,7 +81,11 @@ def _main(argv=None) -> int:
         skip_special()
 
     try:
-        if args.stage == "check":
+        if args.stage == "check" and args.curve:
+            from pipeline.curve.check import check_curve
+
+            print("\n".join(check_curve(args.curve)))
+        elif args.stage == "check":
             from pipeline.config.check import run_check
 
             print("\n".join(run_check(args.case, args.wheel, args.rail)))
