@@ -26,6 +26,7 @@ import time
 from pathlib import Path
 
 from pipeline.store import artifacts, paths
+from pipeline.config.loader import ConfigError
 from pipeline.study.definition import load_study
 
 log = logging.getLogger("pipeline.study")
