@@ -44,7 +44,8 @@ WFILE := geometry/wheels/$(WHEEL).toml
 RFILE := geometry/rails/$(RAIL).toml
 STUDY ?= map
 # the cases a study runs on: its `cases = [...]` line (read without Python)
-STUDY_CASES = $(shell sed -n 's/^cases *= *\[\(.*\)\].*/\1/p' pipeline/studies/$(STUDY).toml | tr -d '",')
+# (a study that is not there: none; the study stage names it in one line)
+STUDY_CASES = $(shell sed -n 's/^cases *= *\[\(.*\)\].*/\1/p' pipeline/studies/$(STUDY).toml 2>/dev/null | tr -d '",')
 MAP_CASES = $(shell sed -n 's/^cases *= *\[\(.*\)\].*/\1/p' pipeline/studies/map.toml | tr -d '",')
 export SQUEAL_BUILD_DIR := $(abspath $(BUILD))
 export VTK_DEFAULT_OPENGL_WINDOW ?= vtkEGLRenderWindow
@@ -129,8 +130,8 @@ $(STAMP): requirements.txt $(RENDER)
 
 setup: $(STAMP) ## install Debian packages and the Python venv (stamp files; reruns only when the lists change)
 
-check: | $(STAMP) ## validate the CASE file and its wheel and rail (or WHEEL=, RAIL=) only; STUDY=<name>: the study file (a line study: its CSV of curves)
-	$(if $(filter command line,$(origin STUDY)),$(PY) -m pipeline.study.check $(STUDY),$(PY) -m pipeline check --wheel $(WHEEL) --rail $(RAIL) --case $(CASE))
+check: | $(STAMP) ## validate the CASE file and its wheel and rail (or WHEEL=, RAIL=) only; STUDY=<name>: the study file (a line study: its CSV of curves); CURVE=<name>: the curve, its vehicle, wheel and rail, the steady curving
+	$(if $(filter command line,$(origin STUDY)),$(PY) -m pipeline.study.check $(STUDY),$(if $(CURVE),$(PY) -m pipeline check --curve $(CURVE),$(PY) -m pipeline check --wheel $(WHEEL) --rail $(RAIL) --case $(CASE)))
 
 # --- wheel stages
 $(W)/mesh.json: $(WFILE) $(DEPS_mesh) | $(CORE)
@@ -221,6 +222,17 @@ VEHICLE  = $(call TOML_KEY,vehicle,$(CURVE_F))
 VEHICLE_F = geometry/vehicles/$(VEHICLE).toml
 CURVE_WHEEL = $(or $(call TOML_KEY,wheel,$(VEHICLE_F)),c20)
 CURVE_RAIL  = $(or $(call TOML_KEY,rail,$(CURVE_F)),bv50)
+# the curve's vehicle, wheel and rail files are there and the vehicle's name is its file's (pipeline/store/deps.py
+# --curve), else one line naming the file and key that asked, before any work (a missing wheel file was
+# Make's "No rule to make target")
+ifneq ($(CURVE),)
+  ifneq ($(filter curve check $(BUILD)/curves/%,$(MAKECMDGOALS)),)
+    CURVE_INPUTS := $(shell $(DEPS_PY) pipeline/store/deps.py --curve $(CURVE_F) 2>&1)
+    ifneq ($(.SHELLSTATUS),0)
+      $(error CURVE=$(CURVE): $(CURVE_INPUTS))
+    endif
+  endif
+endif
 $(BUILD)/curves/$(CURVE)/verdict.csv: $(CURVE_F) $(wildcard $(VEHICLE_F)) geometry/wheels/$(CURVE_WHEEL).toml geometry/rails/$(CURVE_RAIL).toml $(PROFILES) $(DEPS_curve) | $(STAMP)
 	@$(MAKE) --no-print-directory $(BUILD)/wheels/$(CURVE_WHEEL)/modes.npz $(BUILD)/rails/$(CURVE_RAIL)/rail.npz \
 	  WHEEL=$(CURVE_WHEEL) RAIL=$(CURVE_RAIL) CASE=default

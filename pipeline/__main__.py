@@ -11,6 +11,7 @@ import logging
 import sys
 
 from pipeline.stages import STAGES
+from pipeline.store.atomic import interrupted, watch_interrupts
 
 # the stages that run numba code (pipeline/numba_setup.py)
 NUMBA_STAGES = {name for name, st in STAGES.items() if st.numba}
@@ -19,8 +20,12 @@ NUMBA_STAGES = {name for name, st in STAGES.items() if st.numba}
 def main(argv=None) -> int:
     """The CLI; Ctrl-C (KeyboardInterrupt) anywhere ends it with one line and exit code 130 (the
     artifacts written before are whole: every write is atomic)."""
+    watch_interrupts()
     try:
-        return _main(argv)
+        rc = _main(argv)
+        if interrupted():                           # swallowed by a library on the way (pipeline.store.atomic)
+            raise KeyboardInterrupt
+        return rc
     except KeyboardInterrupt:
         stage = next((a for a in (sys.argv[1:] if argv is None else argv) if a in STAGES), "the stage")
         print(f"interrupted: {stage} stopped; the artifacts it had finished are kept, nothing half-written",
@@ -40,7 +45,7 @@ def _main(argv=None) -> int:
                     "(default: default)")
     ap.add_argument("--workers", type=int, default=None,
                     help="processes for the harmonic solves, Dask workers of a study's local cluster (default: cores)")
-    ap.add_argument("--curve", default=None, help="curve: curve file pipeline/curves/<name>.toml")
+    ap.add_argument("--curve", default=None, help="curve, check: curve file pipeline/curves/<name>.toml")
     ap.add_argument("--no-what-ifs", action="store_true", help="curve: skip the mitigation what-ifs")
     ap.add_argument("--study", default="map", help="study file pipeline/studies/<name>.toml (default: map)")
     ap.add_argument("--quick", action="store_true", help="study: the coarser grid / shorter runs for a quick look")
@@ -76,7 +81,11 @@ def _main(argv=None) -> int:
         skip_special()
 
     try:
-        if args.stage == "check":
+        if args.stage == "check" and args.curve:
+            from pipeline.curve.check import check_curve
+
+            print("\n".join(check_curve(args.curve)))
+        elif args.stage == "check":
             from pipeline.config.check import run_check
 
             print("\n".join(run_check(args.case, args.wheel, args.rail)))

@@ -32,6 +32,7 @@ import numpy as np
 
 from pipeline.store import artifacts, paths
 from pipeline.store.code_hash import code_key
+from pipeline.caches.blas_threads import pinned
 
 log = logging.getLogger("pipeline.greens")
 
@@ -41,10 +42,12 @@ KERNEL_FUNCTIONS = ("pipeline.caches.rail_kernel:build_kernel",)  # the code the
 
 def kernel_config(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, grid: dict) -> dict:
     """Everything the kernel at |y_r| depends on (the cache key is its hash).  grid: n_t, n_lags,
-    f_max, f_taper (pipeline.stages.greens's RAIL_* settings)."""
+    f_max, f_taper (solvers.greens.grid's RAIL_* settings).  |y_r| exactly, as the kernel is built
+    at it: rounded (to 1 nm, as it was), two points of one bin shared a key and the first builder's
+    kernel (8e-9 of its peak per 0.1 nm at 10.3 mm, issue 34)."""
     mesh = paths.rail_dir(pr["name"]) / "section.msh"
     return {"rail": rail_hash, "mesh": hashlib.sha256(mesh.read_bytes()).hexdigest()[:16],
-            "code": code_key(*KERNEL_FUNCTIONS), "y_r_abs": round(abs(float(y_r)), 9), "v": float(v), "dt": float(dt),
+            "code": code_key(*KERNEL_FUNCTIONS), "y_r_abs": abs(float(y_r)), "v": float(v), "dt": float(dt),
             **{k: (int(x) if k.startswith("n_") else float(x)) for k, x in grid.items()}}
 
 
@@ -83,9 +86,11 @@ def rail_kernel(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, grid:
     return arrays, cached
 
 
+@pinned
 def wave_table_threads(model, freqs, y: float, workers: int = 2) -> dict:
     """``wave_table(model, freqs, points=[y])`` computed over ``workers`` frequency slices in
-    threads (each frequency is independent: the same numbers as one call)."""
+    threads (each frequency is independent: the same numbers as one call), OpenBLAS on one thread in
+    each (``blas_threads``: the bits do not follow the process's thread count)."""
     from solvers.rail.response import wave_table
 
     parts = np.array_split(np.asarray(freqs, float), max(1, min(workers, len(freqs))))
@@ -111,9 +116,11 @@ def table_transfer(T: dict, inside: np.ndarray, w: np.ndarray):
     return transfer
 
 
+@pinned
 def build_kernel(pr: dict, y_r: float, v: float, dt: float, grid: dict, taper) -> dict:
     """Moving kernel g_mov (n_lags, 2, 2), the fixed-point kernel, its decay, the tail ratio and
-    the point receptance at head point y_r >= 0 (module notes)."""
+    the point receptance at head point y_r >= 0 (module notes); OpenBLAS on one thread
+    (``blas_threads``)."""
     from solvers.greens.kernels import decayed, frequency_grid, green_from_receptance
     from solvers.rail.moving_kernel import moving_green_waves
     from pipeline.stages.rail_io import build_rail_model

@@ -26,6 +26,7 @@ import numpy as np
 
 from pipeline.store import artifacts, paths
 from pipeline.store.code_hash import code_key
+from pipeline.caches.blas_threads import pinned
 
 log = logging.getLogger("pipeline.greens")
 
@@ -60,8 +61,10 @@ def table_dir(rail: str, cfg: dict):
     return paths.rail_dir(rail) / "surface" / config_hash(cfg)[:16]
 
 
+@pinned
 def build_table(pr: dict, dt: float, grid: dict, folder, cfg: dict, workers: int = 2) -> None:
-    """Compute the surface wave table (module notes) and write it to ``folder``."""
+    """Compute the surface wave table (module notes) and write it to ``folder``; OpenBLAS on one thread
+    (``blas_threads``: the same bits whoever builds it)."""
     from geometry.rail import running_surface
     from solvers.greens.kernels import frequency_grid
     from solvers.rail.surface import family_shapes, load_points, surface_nodes, surface_polyline, surface_rows
@@ -157,6 +160,7 @@ def surface_kernel(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, gr
     return arrays, cached
 
 
+@pinned
 def kernel_from_waves(k: np.ndarray, a: np.ndarray, v: float, dt: float, grid: dict, taper) -> dict:
     """The moving kernel, the fixed-point kernel, its decay, the tail ratio and the point receptance
     of a wave table (k, a) on Kropp's grid below f_taper: ``rail_kernel.build_kernel``'s arrays."""

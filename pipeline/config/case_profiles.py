@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.store import artifacts, paths
-from pipeline.config.loader import ConfigError
+from pipeline.config.loader import ConfigError, MissingInput, named_file
 
 PROFILES = Path(os.environ.get("SQUEAL_PROFILE_DIR", paths.ROOT / "geometry" / "profiles"))
 
@@ -46,7 +46,7 @@ def read_profile(name: str):
     path = profile_file(name)
     if not path.exists():
         have = sorted(p.stem for p in PROFILES.glob("*.csv"))
-        raise ConfigError(str(path), detail=f"no such profile {name!r}; available: {have}")
+        raise MissingInput(path, "profile", have, detail=f"no such profile {name!r}; available: {have}")
     text = path.read_text(encoding="utf-8", errors="replace")
     try:
         prof = profile_from_text(text, str(path), name)
@@ -55,17 +55,28 @@ def read_profile(name: str):
     return prof, hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
-def case_profiles(c: dict, pw: dict, pr: dict):
-    """(wheel Profile, rail Profile, description for the config hash)."""
+def case_profiles(c: dict, pw: dict, pr: dict, asked: dict | None = None):
+    """(wheel Profile, rail Profile, description for the config hash).  ``asked``: {'wheel': (file,
+    key), 'rail': (file, key)}: where ``c``'s ``contact.<kind>_profile`` comes from; a profile the wheel
+    or rail file names is asked by that file's ``running_surface.profile``.  A missing profile file is
+    an error naming the file and key that asked for it."""
     from geometry.profiles import build_profile
     from geometry.standard_profiles import rail_head_points, wheel_tread_points
 
     desc = {}
+    asked = asked or {}
+
+    def asker(kind, params):
+        if c["contact"].get(f"{kind}_profile"):
+            return asked.get(kind, ("the case", f"contact.{kind}_profile"))
+        own = paths.wheel_file(params["name"]) if kind == "wheel" else paths.rail_file(params["name"])
+        return own, "running_surface.profile"
 
     def surface(kind, name, params, points, source):
         """The named profile file (checked to be a ``kind`` profile), else the parametric one."""
         if name:
-            prof, desc[f"{kind}_profile"] = read_profile(name)
+            where, key = asker(kind, params)
+            prof, desc[f"{kind}_profile"] = named_file(where, key, name, read_profile)
             if prof.kind != kind:
                 raise ConfigError(str(profile_file(name)), detail=f"kind is {prof.kind!r}, a {kind} profile is needed")
             return prof
@@ -108,7 +119,8 @@ def contact_geometry(name: str, c: dict, pw: dict, pr: dict) -> ContactGeometry:
     its offset and why."""
     from geometry.contact_point import FlangeContact, TrackRail, rigid_contact, wheel_shift
 
-    wheel, rail, desc = case_profiles(c, pw, pr)
+    wheel, rail, desc = case_profiles(c, pw, pr, {k: (paths.case_file(name), f"contact.{k}_profile")
+                                                  for k in ("wheel", "rail")})
     inc = pr.get("running_surface", {}).get("inclination", 0.0) or 0.0
     cc, dy = c["contact"]["rolling_circle_y"], c["contact"]["dy_wr"]
     track = TrackRail(rail, inc)
@@ -131,9 +143,10 @@ def case_contact(name: str):
     from pipeline.config.input_schemas import CASE
     from pipeline.stages.wheel import load_wheel
 
-    c = load(paths.case_file(name), CASE)
-    pw, _ = load_wheel(c["wheel"])
-    pr, _ = load_rail_params(c["rail"])
+    path = paths.case_file(name)
+    c = load(path, CASE)
+    pw, _ = named_file(path, "wheel", c["wheel"], load_wheel)
+    pr, _ = named_file(path, "rail", c["rail"], load_rail_params)
     return c, pw, pr, contact_geometry(name, c, pw, pr)
 
 

@@ -7,7 +7,8 @@ the case, the wheel or the rail file: present, readable, of the right kind), the
 of the profiles at its wheelset offset (flange contact is refused, as the contact stage does),
 the rail model's head node for its contact point (as the greens stage does), the second contact
 zone of a two-point case (``pipeline.stages.second_point.second_zone``) and its time step
-(``time_step_problem``).  Notes (not errors): a positive lateral creepage (over-radial).
+(``time_step_problem``).  Notes (not errors): an over-radial wheelset (negative angle of attack),
+an outer wheel's positive lateral creepage.
 """
 from __future__ import annotations
 
@@ -44,9 +45,25 @@ def profile_problems(case: str, c: dict, pw: dict, pr: dict) -> None:
             raise ConfigError(str(src), [(key, name, f"not a {kind} profile (its kind is {prof.kind!r})")])
 
 
+def outer_wheel(c: dict) -> bool:
+    """Whether the case is a curve wheel on the outer rail (the curve stage names it ``<curve>/a<k>o``,
+    ``pipeline.curve.operating.WHEELS``); an ordinary case file is, like the reference's, an inner wheel."""
+    cw = paths.curve_wheel(str(c.get("name", "")))
+    return cw is not None and cw[1].endswith("o")
+
+
 def over_radial_note(c: dict) -> str | None:
-    """An explanation when the case's lateral creepage is positive (over-radial), else None."""
+    """An explanation when the case's wheelset is over-radial (negative angle of attack), else None.
+    gamma_y is in the wheel's contact frame, direction 2 toward that wheel's field side (SPEC 2;
+    ``solvers/curving/summary.py``): the yaw psi gives gamma_y ~ -psi at the inner wheel and ~ +psi at the
+    outer wheel, so over-radial is gamma_y > 0 at an inner wheel and gamma_y < 0 at an outer wheel."""
     gy = c["kinematics"]["gamma_y"]
+    if outer_wheel(c):
+        if gy >= 0:
+            return None
+        return (f"gamma_y = {gy:+.4g} < 0 at an outer wheel: an over-radial wheelset (negative angle of attack, e.g. "
+                f"a trailing axle or a wheelset steered past radial); the reference model (Zenzerovic 2014, SPEC 6) "
+                f"studies under-radial leading wheelsets: results are outside the reference's validation")
     if gy <= 0:
         return None
     return (f"gamma_y = {gy:+g} > 0: an over-radial wheelset (negative angle of attack, e.g. a trailing axle or a "
@@ -57,10 +74,20 @@ def over_radial_note(c: dict) -> str | None:
             f"outside the reference's validation")
 
 
+def outer_wheel_note(c: dict) -> str | None:
+    """A short note for the outer wheel of an under-radial wheelset (gamma_y > 0 in its frame), else None."""
+    gy = c["kinematics"]["gamma_y"]
+    if not outer_wheel(c) or gy <= 0:
+        return None
+    return (f"gamma_y = {gy:+.4g} > 0 at an outer wheel of an under-radial wheelset (the creep force on the rail "
+            f"points to its gauge side): the mirror image of the reference's inner wheel (gamma_y < 0), outside "
+            f"its validation")
+
+
 def run_check(case: str, wheel: str | None, rail: str | None) -> list[str]:
     """Check the case (and ``wheel``, ``rail`` when given apart); return the lines to print.
     Raises ConfigError (one line) at the first problem."""
-    from pipeline.config.loader import ConfigError, load
+    from pipeline.config.loader import ConfigError, load, named_file
     from pipeline.caches.friction_curves import case_friction
     from pipeline.config.rail_contact import rail_point
     from pipeline.config.case_profiles import contact_geometry
@@ -69,9 +96,9 @@ def run_check(case: str, wheel: str | None, rail: str | None) -> list[str]:
     from pipeline.stages.wheel import load_wheel
 
     if wheel:
-        load_wheel(wheel)
+        named_file("command line", "--wheel", wheel, load_wheel)
     if rail:
-        load_rail_params(rail)
+        named_file("command line", "--rail", rail, load_rail_params)
     try:
         case_path = paths.case_file(case)
     except ValueError as e:
@@ -81,8 +108,8 @@ def run_check(case: str, wheel: str | None, rail: str | None) -> list[str]:
         raise ConfigError(str(case_path), detail=why)
     c = load(case_path, CASE)
     friction = case_friction(c, case)
-    pw, _ = load_wheel(c["wheel"])
-    pr, _ = load_rail_params(c["rail"])
+    pw, _ = named_file(case_path, "wheel", c["wheel"], load_wheel)
+    pr, _ = named_file(case_path, "rail", c["rail"], load_rail_params)
     profile_problems(case, c, pw, pr)
     geo = contact_geometry(case, c, pw, pr)                 # the rigid contact search (flange contact refused)
     where = f"case '{case}', dy_WR = {1e3 * c['contact']['dy_wr']:+.1f} mm (y^W = {1e3 * geo.contact.y_wheel:+.2f} mm)"
@@ -96,9 +123,9 @@ def run_check(case: str, wheel: str | None, rail: str | None) -> list[str]:
         raise ConfigError(str(case_path), [("time.dt", c["time"]["dt"], problem)])
     lines = [f"wheel {c['wheel']}, rail {c['rail']} and case {case}: configuration OK (friction {friction.text}; "
              f"contact at y^W = {1e3 * geo.contact.y_wheel:+.2f} mm, y^R = {1e3 * geo.contact.y_rail:+.2f} mm)"]
-    note = over_radial_note(c)
-    if note:
-        lines.append(f"note: {note}")
+    for note in (over_radial_note(c), outer_wheel_note(c)):
+        if note:
+            lines.append(f"note: {note}")
     return lines
 
 

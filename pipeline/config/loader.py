@@ -37,6 +37,8 @@ __all__ = [
     "ListOf",
     "ConfigError",
     "ConfigIssue",
+    "MissingInput",
+    "named_file",
     "validate",
     "load",
     "config_hash",
@@ -82,6 +84,16 @@ def _toml_type(value: Any) -> str:
     return type(value).__name__  # datetime, date, time, ...
 
 
+def issue_text(key: str, value: Any, allowed: str) -> str:
+    """One problem as a ConfigError prints it: ``key = value (type): expected allowed``, or without
+    'expected' where ``allowed`` says what is wrong ('unknown key ...', 'not ...', 'no ...')."""
+    if value is MISSING:
+        return f"{key}: {allowed}"
+    if allowed.startswith("unknown key") or allowed.startswith("not ") or allowed.startswith("no "):
+        return f"{key} = {_short_repr(value)}: {allowed}"
+    return f"{key} = {_short_repr(value)} ({_toml_type(value)}): expected {allowed}"
+
+
 class ConfigError(ValueError):
     """Invalid configuration; the message names the file and every problem.
 
@@ -106,15 +118,7 @@ class ConfigError(ValueError):
             return f"{self.source}: {self.detail}"
         n = len(self.errors)
         lines = [f"{self.source}: {n} configuration error{'s' if n != 1 else ''}:"]
-        for key, value, allowed in self.errors:
-            if value is MISSING:
-                lines.append(f"  {key}: {allowed}")
-            elif allowed.startswith("unknown key") or allowed.startswith("not ") or allowed.startswith("no "):
-                lines.append(f"  {key} = {_short_repr(value)}: {allowed}")
-            else:
-                lines.append(
-                    f"  {key} = {_short_repr(value)} ({_toml_type(value)}): expected {allowed}"
-                )
+        lines += [f"  {issue_text(*e)}" for e in self.errors]
         if n == 1:                  # one problem: one line
             return f"{self.source}: {lines[1].strip()}"
         return "\n".join(lines)
@@ -122,6 +126,29 @@ class ConfigError(ValueError):
     def __reduce__(self):
         # Keep the exception picklable (multiprocessing workers re-raise it).
         return (type(self), (self.source, list(map(tuple, self.errors)), self.detail))
+
+
+class MissingInput(ConfigError):
+    """An input file named by another file (a wheel, rail, vehicle, profile ...) that is not there;
+    ``named_file`` turns it into an error naming the file and key that asked for it."""
+
+    def __init__(self, path, what: str, available: Sequence[str], detail: str | None = None) -> None:
+        self.path, self.what, self.available = str(path), what, list(available)
+        super().__init__(self.path, detail=detail or f"no such {what}; available: {self.available}")
+
+    def __reduce__(self):
+        return (type(self), (self.path, self.what, self.available, self.detail))
+
+
+def named_file(source, key: str, value, load_named):
+    """``load_named(value)``, where ``value`` is the name the file ``source`` gives under ``key``; a
+    missing file is a one-line ConfigError naming ``source``, the key, the value and what is there:
+    ``<source>: wheel = 'c21': no such wheel file <path>; available: ['c20', 'straight']``."""
+    try:
+        return load_named(value)
+    except MissingInput as e:
+        raise ConfigError(str(source), [(key, value, f"no such {e.what} file {e.path}; available: "
+                                                     f"{e.available}")]) from None
 
 
 # --------------------------------------------------------------------------
@@ -276,7 +303,7 @@ def load_geometry(path, schema: Mapping, check, what: str, available: Sequence[s
     from geometry.outline import GeometryError
 
     if not os.path.exists(path):
-        raise ConfigError(str(path), detail=f"no such {what}; available: {list(available)}")
+        raise MissingInput(path, what, available)
     params = load(path, schema)
     key = (getattr(check, "__module__", ""), getattr(check, "__qualname__", repr(check)), config_hash(params))
     if key in _CHECKED:                 # the same parameters passed this check before in this process

@@ -47,7 +47,7 @@ from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 
 from pipeline.store import paths
-from pipeline.config.loader import ConfigError, load
+from pipeline.config.loader import ConfigError, MissingInput, load, named_file
 from pipeline.config.curve_schemas import CURVE, VEHICLE
 
 G = 9.81
@@ -80,14 +80,18 @@ def available_curves() -> list[str]:
 
 def _load_named(path: Path, schema: dict, kind: str, have: list[str]) -> dict:
     if not path.exists():
-        raise ConfigError(str(path), detail=f"no such {kind} {path.stem!r}; available: {have}")
+        raise MissingInput(path, kind, have, detail=f"no such {kind} {path.stem!r}; available: {have}")
     return load(path, schema)
 
 
 def load_vehicle(name: str) -> dict:
-    """The validated vehicle file; exactly one of load.wheel_load_kN, load.axle_load_kN."""
+    """The validated vehicle file; exactly one of load.wheel_load_kN, load.axle_load_kN; its ``name``
+    that of its file (a curve, a line's CSV and the build's folders name a vehicle by its file)."""
     path = vehicle_file(name)
     v = _load_named(path, VEHICLE, "vehicle", available_vehicles())
+    if v["name"] != path.stem:
+        raise ConfigError(str(path), [("name", v["name"], f"the file's name {path.stem!r} (a vehicle is named "
+                                                          "by its file: rename one to match the other)")])
     ld = v["load"]
     if (ld["wheel_load_kN"] is None) == (ld["axle_load_kN"] is None):
         given = ld["wheel_load_kN"] if ld["wheel_load_kN"] is not None else ld["axle_load_kN"]
@@ -207,18 +211,20 @@ class CurveSolution:
     wheels: list
 
 
-def _profiles(v: dict, c: dict):
-    """(wheel params, rail params, wheel Profile, rail Profile, TrackRail, profile names)."""
+def _profiles(v: dict, c: dict, files: tuple = ("the vehicle file", "the curve file")):
+    """(wheel params, rail params, wheel Profile, rail Profile, TrackRail, profile names); ``files``:
+    the vehicle and curve files (a missing wheel, rail or profile is an error naming the one that asked)."""
     from geometry.contact_point import TrackRail
 
     from pipeline.config.case_profiles import case_profiles
     from pipeline.stages.rail import load_rail_params
     from pipeline.stages.wheel import load_wheel
 
-    pw, _ = load_wheel(v["wheel"])
-    pr, _ = load_rail_params(c["rail"])
+    vf, cf = files
+    pw, _ = named_file(vf, "wheel", v["wheel"], load_wheel)
+    pr, _ = named_file(cf, "rail", c["rail"], load_rail_params)
     stub = {"contact": {"wheel_profile": v["wheel_profile"], "rail_profile": c["rail_profile"]}}
-    wheel, rail, desc = case_profiles(stub, pw, pr)
+    wheel, rail, desc = case_profiles(stub, pw, pr, {"wheel": (vf, "wheel_profile"), "rail": (cf, "rail_profile")})
     inc = pr.get("running_surface", {}).get("inclination", 0.0) or 0.0
     return pw, pr, wheel, rail, TrackRail(rail, inc), desc
 
@@ -229,8 +235,8 @@ def build_problem(name: str, **overrides):
     from solvers.curving import CreepLaw, Profiles, Track, Vehicle, flange_edge
 
     c = load_curve(name, **overrides)
-    v = load_vehicle(c["vehicle"])
-    pw, pr, wheel, rail, rail_t, desc = _profiles(v, c)
+    v = named_file(curve_file(name), "vehicle", c["vehicle"], load_vehicle)
+    pw, pr, wheel, rail, rail_t, desc = _profiles(v, c, (vehicle_file(c["vehicle"]), curve_file(name)))
     r0 = pw["tyre"]["rolling_radius"]
     l_w = 0.5e-3 * v["bogie"]["back_to_back_mm"] + pw["tyre"]["back_offset"]
     b_r = 0.5e-3 * (c["gauge_mm"] + c["gauge_widening_mm"]) - gauge_face(rail_t)

@@ -20,6 +20,7 @@ import time
 import numpy as np
 
 from pipeline.store import artifacts, paths
+from pipeline.caches.blas_threads import one_blas_thread, pinned
 
 log = logging.getLogger("pipeline.greens")
 
@@ -57,11 +58,12 @@ def point_table(pr: dict, rail_hash: str, y_r: float, dt: float, grid: dict) -> 
         except artifacts.ArtifactError:
             pass
         t0 = time.perf_counter()
-        model = build_rail_model(pr, str(paths.rail_dir(pr["name"]) / "section.msh"), contact_y=[y_r],
-                                 with_centre=False)
-        f = frequency_grid(dt, int(grid["n_t"]))
-        inside = f < grid["f_taper"]
-        T = wave_table_threads(model, np.maximum(f[inside], 1.0), y_r)   # the static limit: the 1 Hz response
+        with one_blas_thread():                               # the bits of rail_kernel.build_kernel's table
+            model = build_rail_model(pr, str(paths.rail_dir(pr["name"]) / "section.msh"), contact_y=[y_r],
+                                     with_centre=False)
+            f = frequency_grid(dt, int(grid["n_t"]))
+            inside = f < grid["f_taper"]
+            T = wave_table_threads(model, np.maximum(f[inside], 1.0), y_r)   # the static limit: the 1 Hz response
         out = {"k": T["k"], "a": np.ascontiguousarray(T["a"][:, :, 0])}
         artifacts.save_npz(path, KIND_TABLE, cfg, **out)
         log.info("rail wave table at |y^R| = %.1f mm (a listed point) in %.1f s -> %s", 1e3 * y_r,
@@ -69,6 +71,7 @@ def point_table(pr: dict, rail_hash: str, y_r: float, dt: float, grid: dict) -> 
         return out
 
 
+@pinned
 def kernel_from_table(T: dict, v: float, dt: float, grid: dict, taper) -> dict:
     """``rail_kernel.build_kernel``'s arrays from the point's wave table (the same calls after the table)."""
     from solvers.greens.kernels import decayed, frequency_grid, green_from_receptance

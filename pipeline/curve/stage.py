@@ -40,11 +40,11 @@ UNITS = {"dy_wr": "m", "angle_of_attack": "rad", "spin": "1/m", "y_wheel": "m", 
 
 def one_line(e):
     """A ConfigError with its problems on one line (file: key = value: expected range; ...)."""
-    from pipeline.config.loader import ConfigError
+    from pipeline.config.loader import ConfigError, issue_text
 
     if not e.errors:
         return e
-    return ConfigError(e.source, detail="; ".join(f"{k} = {v!r}: expected {a}" for k, v, a in e.errors))
+    return ConfigError(e.source, detail="; ".join(issue_text(*x) for x in e.errors))
 
 
 def solve(curve: str):
@@ -123,8 +123,11 @@ def wheel_verdict(info: CurveInfo, p: WheelPoint, *, what_ifs: bool = True) -> d
         lis = dict(np.load(d / "listen.npz", allow_pickle=False))
         w = models.ctx.wheel
         i = nearest_mode(f, w["f"], models.ctx.flexible, 0.05, (1, 2, 3))
+        from pipeline.stages.listen import listen_files, receiver_tag
+
+        wav = listen_files(name, receiver_tag(lis["distance"], lis["height"]))["wav"]   # listen_<receiver>.wav
         row |= {"mode": models.ctx.label(i) if i is not None else "", "L_W": float(rad["L_W"]),
-                "L_pA": float(lis["L_pA"]), "wav": str(d / "listen.wav")}
+                "L_pA": float(lis["L_pA"]), "wav": str(wav)}
         if what_ifs:
             fr = friction_what_if(models)
             row["mu_threshold"] = fr.threshold

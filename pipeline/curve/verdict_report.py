@@ -3,15 +3,19 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from pipeline.curve.operating import CurveInfo
 
 
 def cell(v):
-    """A CSV cell: floats to 6 significant digits, NaN empty, booleans as 0/1."""
-    if isinstance(v, bool):
+    """A CSV cell: floats to 6 significant digits, booleans as 0/1; a value that does not exist (NaN: not
+    computed, e.g. a quiet wheel's frequency; -inf dB: a band without sound) an empty cell, never 'nan' or
+    '-inf'."""
+    if isinstance(v, (bool, np.bool_)):
         return int(v)
-    if isinstance(v, float):
-        return "" if math.isnan(v) else f"{v:.6g}"
+    if isinstance(v, (float, np.floating)):
+        return f"{float(v):.6g}" if math.isfinite(v) else ""
     return v
 
 

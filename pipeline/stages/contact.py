@@ -102,11 +102,13 @@ def build_contact(c: dict, pw: dict, geo, n_table: int = 41, frictions=None, cur
 def run_contact(case: str) -> dict:
     from pipeline.caches.friction_curves import contact_curve_cache
 
-    from pipeline.config.check import over_radial_note
+    from pipeline.config.check import outer_wheel_note, over_radial_note
 
     c, pw, pr, geo, cfg = contact_setup(case)
     if over_radial_note(c):
         log.warning("note: case %s: %s", case, over_radial_note(c))
+    elif outer_wheel_note(c):
+        log.info("note: case %s: %s", case, outer_wheel_note(c))
     t0 = time.perf_counter()
     cache = contact_curve_cache(case)
     try:

@@ -200,7 +200,7 @@ def _read_back(pcm, pa_per_count: float, onset) -> tuple[float, float]:
 
 
 def calibration(a: dict, case: str) -> dict:
-    """The sidecar's payload (and the WAV comment)."""
+    """The sidecar's fields (and the WAV comment)."""
     lc = (f"{float(a['t_limit_cycle']):.3f} s" if not a["silent"] else "none (silent)")
     comment = (f"squeal of case {case} at {float(a['distance'])} m from the track centre, {float(a['height'])} m above "
                f"the rail; sample value v -> v * {float(a['pa_per_count']):.6e} Pa; 0 dBFS sine = "
@@ -266,7 +266,7 @@ def run_listen(case: str, distance=None, height=None, allow_silent: bool = False
     plot_listening(arrays, files["png"], case)
     with artifacts.atomic_write(files["wav"]) as tmp:
         tmp.write_bytes(wav)
-    artifacts.save_json(files["json"], "listen-wav", cfg, cal)
+    artifacts.save_sidecar(files["json"], "listen-wav", cfg, cal)   # flat: its keys at the top level (README)
     artifacts.save_csv(files["bands"], BAND_COLUMNS, band_rows(arrays))
     artifacts.save_npz(files["npz"], "listen", cfg, **arrays)
     if arrays["meaningful"]:

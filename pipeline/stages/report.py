@@ -91,7 +91,7 @@ def contact_section(case: str, cfg: dict, figdir, c: dict | None = None) -> str:
         s_op, mu_op = operating_point(a, kin["speed"], kin["gamma_y"], kin.get("gamma_x", 0.0), mu)
         fig = friction_curves_figure(a, f"{case}: dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm")
         save_figure(mark_operating_slip(fig, a, s_op, mu), figdir / f"{flat(case)}_contact_rf.png", dpi=100)
-        op = (f" The case rolls at the slip s = |gamma| v = {s_op:.3f} m/s (gamma_y = {kin['gamma_y']:g}, "
+        op = (f" The case rolls at the slip s = |gamma| v = {s_op:.3f} m/s (gamma_y = {kin['gamma_y']:#.4g}, "
               f"v = {3.6 * kin['speed']:.0f} km/h)" + (f", where mu_RF = {mu_op:.3f} of mu = {mu:g}"
                                                       if np.isfinite(mu_op) else "") + " (marked).")
     else:
@@ -305,6 +305,16 @@ def exports_section(case: str, vtk: dict) -> str:
 """
 
 
+def case_line(cpath, c: dict, friction: str) -> str:
+    """The report's line of the case's inputs, in engineering units, 4 significant digits (a curve wheel's
+    creepages are the steady curving's, e.g. -0.015402692482766116)."""
+    kin = c["kinematics"]
+    return (f"Case file `{paths.shown(cpath)}`: wheel `{c['wheel']}`, rail `{c['rail']}`, "
+            f"dy_WR = {1e3 * c['contact']['dy_wr']:.1f} mm, {friction}, creepages gamma_y = {kin['gamma_y']:#.4g}, "
+            f"gamma_x = {kin.get('gamma_x', 0.0):#.4g} (slip / speed, dimensionless), "
+            f"v = {3.6 * kin['speed']:.0f} km/h.\n")
+
+
 def run_report(case: str) -> str:
     from pipeline.config.case import resolve_case
 
@@ -314,13 +324,13 @@ def run_report(case: str) -> str:
     figdir = out / "figures"
     (figdir / case).parent.mkdir(parents=True, exist_ok=True)  # figures/<case>_*.png; a curve wheel's in figures/<curve>/
     sections = [f"# Curve squeal report: case `{case}`\n\n{c['description']}\n\n"
-                f"Case file `{paths.shown(cpath)}`: wheel `{c['wheel']}`, rail `{c['rail']}`, dy_WR = {1e3 * c['contact']['dy_wr']:.0f} mm, "
-                f"{rc.friction.text}, gamma_y = {c['kinematics']['gamma_y']}, v = {3.6 * c['kinematics']['speed']:.0f} km/h.\n",
+                + case_line(cpath, c, rc.friction.text),
                 wheel_section(c["wheel"], figdir), rail_section(c["rail"], figdir)]
-    from pipeline.config.check import over_radial_note
+    from pipeline.config.check import outer_wheel_note, over_radial_note
 
-    if over_radial_note(c):
-        sections.insert(1, f"**Note.** {over_radial_note(c)}.\n")
+    note = over_radial_note(c) or outer_wheel_note(c)
+    if note:
+        sections.insert(1, f"**Note.** {note}.\n")
     from pipeline.stages.contact import contact_inputs
 
     sections.append(contact_section(case, contact_inputs(case)[3], figdir, c))

@@ -11,6 +11,7 @@ import logging
 import numpy as np
 
 from pipeline.store import artifacts, paths
+from pipeline.progress import loop_time
 from pipeline.store.atomic import save_figure
 
 log = logging.getLogger("pipeline.simulate")
@@ -47,17 +48,20 @@ def case_arrays(case: str):
 
 
 def run_simulate(case: str) -> dict:
+    import time
+
     from solvers.timeloop.interaction import contact_model, simulate
 
     from pipeline.caches.friction_curves import case_friction
 
+    t0 = time.perf_counter()
     c, cfg, con, gr, wheel = case_arrays(case)
     out = paths.case_dir(case)
     cm = contact_model(con, case_friction(c, case))
     if c["contact"].get("points", 1) == 2:  # [contact] points = 2: the two-point loop (pipeline/stages/simulate_two_point.py)
         from pipeline.stages.simulate_two_point import simulate_two_point_case
 
-        return simulate_two_point_case(case, c, con, gr, cm, wheel, cfg, plot_forces)
+        return simulate_two_point_case(case, c, con, gr, cm, wheel, cfg, plot_forces, t0)
     res = simulate(wheel, gr["rail_kernel"], cm, dt=c["time"]["dt"], v=c["kinematics"]["speed"],
                    gamma_y=c["kinematics"]["gamma_y"], gamma_x=c["kinematics"]["gamma_x"],
                    spin=c["kinematics"].get("spin", 0.0),
@@ -73,9 +77,10 @@ def run_simulate(case: str) -> dict:
         arrays["contact_angle_wheel"] = np.float64(gr["contact_angle_wheel"])
     plot_forces(res, m, out / "simulate.png", case)
     artifacts.save_npz(out / "simulate.npz", "simulate", cfg, **arrays)
-    log.info("simulate %s: %d steps (%.2f s rolling, %s) in %.1f s; L_F2 = %.1f dB, dominant %.1f Hz -> %s",
-             case, res.n_steps, res.duration, res.stop_reason, res.wall, m["L_F2"], m["f_dominant"],
-             out / "simulate.npz")
+    log.info("simulate %s: %d steps (%.2f s rolling, %s) %s; L_F2 = %.1f dB, dominant %.1f Hz -> %s",
+             case, res.n_steps, res.duration, res.stop_reason, loop_time(time.perf_counter() - t0, res.wall,
+                                                                         res.n_steps),
+             m["L_F2"], m["f_dominant"], out / "simulate.npz")
     return arrays
 
 

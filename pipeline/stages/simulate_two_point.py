@@ -67,12 +67,18 @@ def run_two_point(c: dict, con, gr, cm, wheel, store_every: int = 10):
     return res, arrays
 
 
-def simulate_two_point_case(case: str, c: dict, con, gr, cm, wheel, cfg: dict, plot_forces) -> dict:
+def simulate_two_point_case(case: str, c: dict, con, gr, cm, wheel, cfg: dict, plot_forces,
+                            t0: float | None = None) -> dict:
     """The simulate stage of a two-point case: run, plot the first point's forces (``plot_forces``: the
-    simulate stage's, which a verdict without figures replaces), save, log."""
+    simulate stage's, which a verdict without figures replaces), save, log (``t0``: the stage's start,
+    ``time.perf_counter``)."""
     import logging
+    import time
 
     from pipeline.store import artifacts, paths
+    from pipeline.progress import loop_time
+
+    t0 = time.perf_counter() if t0 is None else t0
 
     res, arrays = run_two_point(c, con, gr, cm, wheel)
     if "contact_angle_wheel" in gr:
@@ -82,8 +88,9 @@ def simulate_two_point_case(case: str, c: dict, con, gr, cm, wheel, cfg: dict, p
     plot_forces(res.a, dict(res.a.measures(), L_F2=m["L_F2"], f_dominant=m["f_dominant"]), out / "simulate.png", case)
     artifacts.save_npz(out / "simulate.npz", "simulate", cfg, **arrays)
     logging.getLogger("pipeline.simulate").info(
-        "simulate %s (two points): %d steps (%s) in %.1f s; static normal forces %.1f / %.1f kN; L_F2 = %.1f dB "
-        "(patch a %.1f, b %.1f dB), dominant %.1f Hz -> %s", case, res.a.n_steps, res.a.stop_reason, res.wall,
+        "simulate %s (two points): %d steps (%s) %s; static normal forces %.1f / %.1f kN; L_F2 = %.1f dB "
+        "(patch a %.1f, b %.1f dB), dominant %.1f Hz -> %s", case, res.a.n_steps, res.a.stop_reason,
+        loop_time(time.perf_counter() - t0, res.wall, res.a.n_steps),
         1e-3 * res.N_static[0], 1e-3 * res.N_static[1], m["L_F2"], m["L_F2_a"], m["L_F2_b"], m["f_dominant"],
         out / "simulate.npz")
     return arrays

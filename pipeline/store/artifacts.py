@@ -38,6 +38,7 @@ __all__ = [
     "load_npz",
     "save_json",
     "load_json",
+    "save_sidecar",
     "save_csv",
 ]
 
@@ -231,6 +232,19 @@ def save_json(path: str | os.PathLike, kind: str, config: Mapping, payload: Any)
     text = json.dumps(
         {PROVENANCE_KEY: prov, "payload": payload}, indent=2, allow_nan=False, ensure_ascii=False
     )
+    with atomic_write(path) as tmp:
+        tmp.write_text(text + "\n", encoding="utf-8")
+    return prov
+
+
+def save_sidecar(path: str | os.PathLike, kind: str, config: Mapping, fields: Mapping[str, Any]) -> dict:
+    """Atomically write a sidecar JSON for readers outside the pipeline (a WAV's calibration, as the
+    README documents it): ``fields`` at the top level beside ``__provenance__`` (no ``payload`` level).
+    Strict JSON, as :func:`save_json`; returns the provenance."""
+    if PROVENANCE_KEY in fields:
+        raise ValueError(f"a sidecar field may not be named {PROVENANCE_KEY!r}")
+    prov = provenance(kind, config)
+    text = json.dumps({PROVENANCE_KEY: prov, **fields}, indent=2, allow_nan=False, ensure_ascii=False)
     with atomic_write(path) as tmp:
         tmp.write_text(text + "\n", encoding="utf-8")
     return prov

@@ -16,6 +16,7 @@ from __future__ import annotations
 import contextlib
 import os
 import secrets
+import signal
 from pathlib import Path
 from typing import Iterator
 
@@ -50,6 +51,25 @@ def _fsync_dir(directory: Path) -> None:
         os.close(fd)
 
 
+_SIGINT = {"seen": False}
+
+
+def watch_interrupts() -> None:
+    """Ctrl-C raises KeyboardInterrupt as ever, and is remembered: a library that swallows the exception
+    (FFCx's JIT, loading a compiled form, takes it for an ImportError of another process's compile and
+    retries) cannot let a stage go on writing as if nothing happened (``interrupted``; the command line
+    installs it)."""
+    def handler(signum, frame):
+        _SIGINT["seen"] = True
+        raise KeyboardInterrupt
+    signal.signal(signal.SIGINT, handler)
+
+
+def interrupted() -> bool:
+    """Whether Ctrl-C came since ``watch_interrupts`` (even if the exception was swallowed)."""
+    return _SIGINT["seen"]
+
+
 @contextlib.contextmanager
 def atomic_write(path: str | os.PathLike) -> Iterator[Path]:
     """Context manager yielding a temporary path that replaces ``path`` on success.
@@ -67,8 +87,9 @@ def atomic_write(path: str | os.PathLike) -> Iterator[Path]:
     the body may overwrite or truncate it.
 
     On normal exit the file is fsync-ed and renamed onto ``path``.  If the
-    body raises (anything, including ``KeyboardInterrupt``) the temporary
-    file is deleted and the exception propagates; the target is untouched.
+    body raises (anything, including ``KeyboardInterrupt``), or a Ctrl-C came
+    and was swallowed (``interrupted``), the temporary file is deleted and the
+    exception propagates; the target is untouched.
     Parent directories are created as needed.
     """
     target = Path(path)
@@ -87,6 +108,8 @@ def atomic_write(path: str | os.PathLike) -> Iterator[Path]:
         break
     try:
         yield tmp
+        if interrupted():                # a Ctrl-C swallowed on the way: nothing more is put in place
+            raise KeyboardInterrupt
         if not tmp.exists():
             raise FileNotFoundError(
                 f"atomic_write: temporary file {tmp} disappeared before it could "

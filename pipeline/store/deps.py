@@ -8,7 +8,9 @@ stage can reach:
 
 ``python pipeline/store/deps.py --case pipeline/cases/<case>.toml`` prints the wheel and rail the
 case names (the Makefile takes them from there, so the two cannot disagree); a curve wheel's
-case file is ``$(BUILD)/curves/<curve>/cases/<wheel>.toml``.
+case file is ``$(BUILD)/curves/<curve>/cases/<wheel>.toml``.  ``--curve pipeline/curves/<curve>.toml``:
+the curve's wheel (its vehicle's) and rail.  A file either names that is not there is one line naming
+the file and the key that asked for it (before Make plans anything).
 
 Reachability is followed at the level of top-level functions and classes, not whole
 modules: from a stage's entry function, every name it references is resolved through the
@@ -199,9 +201,51 @@ def case_inputs(path: Path) -> tuple[str, str]:
                          f"run make curve CURVE={curve} first")
     try:
         data = tomllib.loads(path.read_text())
-        return str(data["wheel"]), str(data["rail"])
+        if not {"wheel", "rail"} <= set(data):
+            raise KeyError(sorted({"wheel", "rail"} - set(data)))
     except (OSError, tomllib.TOMLDecodeError, KeyError) as e:
         raise SystemExit(f"{path}: cannot read the case's keys 'wheel' and 'rail' ({type(e).__name__}: {e})") from e
+    return _named(path, "wheel", data, "geometry/wheels", "wheel"), _named(path, "rail", data, "geometry/rails", "rail")
+
+
+def _named(source: Path, key: str, data: dict, folder: str, what: str, default: str | None = None) -> str:
+    """The name under ``key`` in ``data`` (the file ``source``) of an input file <folder>/<name>.toml, checked
+    to be there: otherwise one line naming ``source``, the key, the value and the files there (as
+    ``pipeline.config.named_file`` words it).  A missing key: ``default`` (the Python stage names a
+    required one)."""
+    name = str(data.get(key, default) or "")
+    if not name or (ROOT / folder / f"{name}.toml").is_file():
+        return name
+    have = sorted(p.stem for p in (ROOT / folder).glob("*.toml"))
+    raise SystemExit(f"{source}: {key} = {name!r}: no such {what} file {folder}/{name}.toml; available: {have}")
+
+
+def curve_inputs(path: Path) -> tuple[str, str]:
+    """(wheel, rail) of the curve file ``path``: its vehicle file's ``wheel`` and its own ``rail``; the
+    vehicle, wheel and rail files checked to be there and the vehicle's ``name`` to be its file's (a
+    curve, a line and the build name a vehicle by its file): one line otherwise, naming the file and key."""
+    path = Path(path)
+    if not path.is_file():
+        have = sorted(p.stem for p in path.parent.glob("*.toml"))
+        raise SystemExit(f"{path}: no such curve file (available: {have})")
+
+    def read(p: Path) -> dict:
+        try:
+            return tomllib.loads(p.read_text())
+        except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as e:
+            raise SystemExit(f"{p}: cannot read it ({type(e).__name__}: {e})") from e
+
+    data = read(path)
+    vehicle = _named(path, "vehicle", data, "geometry/vehicles", "vehicle")
+    if not vehicle:
+        raise SystemExit(f"{path}: vehicle: required (a vehicle file geometry/vehicles/<vehicle>.toml)")
+    vpath = Path("geometry/vehicles") / f"{vehicle}.toml"
+    v = read(ROOT / vpath)
+    if v.get("name") != vehicle:
+        raise SystemExit(f"{vpath}: name = {v.get('name')!r}: expected the file's name {vehicle!r} (a vehicle is "
+                         "named by its file: rename one to match the other)")
+    return (_named(vpath, "wheel", v, "geometry/wheels", "wheel", "c20"),
+            _named(path, "rail", data, "geometry/rails", "rail", "bv50"))
 
 
 def makefile_fragment(root: Path = ROOT) -> str:
@@ -222,10 +266,13 @@ def main(argv: list[str]) -> int:
     ``deps.py --case FILE``: print the case's wheel and rail."""
     if argv[:1] == ["--case"] and len(argv) == 2:
         print(*case_inputs(Path(argv[1])))
+    elif argv[:1] == ["--curve"] and len(argv) == 2:
+        print(*curve_inputs(Path(argv[1])))
     elif not argv:
         sys.stdout.write(makefile_fragment())
     else:
-        print("usage: python pipeline/store/deps.py [--case pipeline/cases/<case>.toml]", file=sys.stderr)
+        print("usage: python pipeline/store/deps.py [--case pipeline/cases/<case>.toml | "
+              "--curve pipeline/curves/<curve>.toml]", file=sys.stderr)
         return 2
     return 0
 

@@ -6,7 +6,8 @@ per curve appended to ``table.csv`` as it finishes (resumable), and the comparis
 CNOSSOS-EU and Schall 03 squeal penalties (``line_rules``).
 
 Outputs in build/studies/<line>/: ``table.csv`` (as run), ``line.csv`` (the CSV's order, with the rules'
-penalties), ``level_radius.png``, ``chainage.png``, ``lw_railway.csv`` (NoiseModelling's LW_RAILWAY
+penalties; a value that does not exist, a band without sound (-inf dB) or a quiet curve's frequency and
+levels (nan), is an empty cell), ``level_radius.png``, ``chainage.png``, ``lw_railway.csv`` (NoiseModelling's LW_RAILWAY
 rows of the squealing curves) with ``lw_railway_sections.csv``, ``line.md`` (the verdict first) and
 ``summary.md`` (the same, for the report), ``curves/`` (a curve file per row); each curve's wheel
 cases and verdict.csv in build/curves/<curve>/.

@@ -124,8 +124,9 @@ def markdown(spec: dict, src: str, quick: bool, every: list[dict], total: int, n
         "(`make curve`) screen first: steady curving of the leading bogie, the stability screen for its four wheels, "
         "the time loop (L_F2 >= 10 dB re 1 N: squeal) and radiation and listening (7.5 m, 1.2 m) only for the wheels "
         "the screen finds unstable.  The level is the loudest squealing wheel's.  Tables: `line.csv` (with L_W per "
-        "1/3-octave band, 50 Hz-10 kHz), `table.csv` (as run); NoiseModelling's LW_RAILWAY rows of the "
-        f"{n_export} squealing rows: `lw_railway.csv` (its PK_SECTION -> curve: `lw_railway_sections.csv`; "
+        "1/3-octave band, 50 Hz-10 kHz; an empty cell is a value that does not exist: a band without "
+        "sound, -inf dB, or a quiet curve's frequency and levels), `table.csv` (as run); NoiseModelling's "
+        f"LW_RAILWAY rows of the {n_export} squealing rows: `lw_railway.csv` (its PK_SECTION -> curve: `lw_railway_sections.csv`; "
         "the source layout and convention: `postprocess/exports.py`).  "
         + (f"Worker time per row: median {np.median(walls):.1f} s, {walls.sum():.0f} s in all.\n" if walls.size else ""))
     return "\n".join(parts)

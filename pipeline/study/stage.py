@@ -20,11 +20,13 @@ import fcntl
 import json
 import logging
 import os
+import shutil
 import threading
 import time
 from pathlib import Path
 
 from pipeline.store import artifacts, paths
+from pipeline.config.loader import ConfigError
 from pipeline.study.definition import load_study
 
 log = logging.getLogger("pipeline.study")
@@ -107,20 +109,27 @@ def run_study(name: str, *, quick: bool = False, scheduler: str | None = None, w
     """Run (or resume) the study ``name``; returns the path of its summary.md."""
     spec, src = load_study(name)
     out = Path(out) if out else paths.build() / "studies" / (spec["name"] + ("-quick" if quick else ""))
+    made = next((p for p in reversed([out, *out.parents]) if not p.exists()), None)   # the first folder made here
     out.mkdir(parents=True, exist_ok=True)
     mod = _kind_module(spec["kind"])
     client = LazyClient(scheduler, workers)
     t0 = time.perf_counter()
-    with open(out / ".lock", "w") as lock:
-        try:                                         # one run per output folder at a time
-            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except BlockingIOError:
-            raise artifacts.ArtifactError(out, "another run of this study is writing here; wait for it "
-                                               "(or stop it: a rerun resumes where it stopped)") from None
-        try:
-            stats = mod.run(spec, src, out, quick=quick, client=client, progress=progress)
-        finally:
-            client.close()
+    try:
+        with open(out / ".lock", "w") as lock:
+            try:                                     # one run per output folder at a time
+                fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except BlockingIOError:
+                raise artifacts.ArtifactError(out, "another run of this study is writing here; wait for it "
+                                                   "(or stop it: a rerun resumes where it stopped)") from None
+            try:
+                stats = mod.run(spec, src, out, quick=quick, client=client, progress=progress)
+            finally:
+                client.close()
+    except ConfigError:                              # refused (its input): the folders made here go again
+        if made is not None and {p.relative_to(made) for p in made.rglob("*") if p.is_file()} <= \
+                {(out / ".lock").relative_to(made)}:
+            shutil.rmtree(made, ignore_errors=True)
+        raise
     record = {"time": time.strftime("%Y-%m-%dT%H:%M:%S"), "study": spec["name"], "quick": quick,
               "scheduler": scheduler or "local", "workers": workers or (os.cpu_count() if not scheduler else None),
               "wall_s": round(time.perf_counter() - t0, 3)} | stats

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import contact_reference as ref
+from pipeline.validation import contact_reference as ref
 
 ROOT = Path(__file__).resolve().parents[2]
 DOC = ROOT / "docs" / "validation"

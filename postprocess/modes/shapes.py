@@ -28,10 +28,16 @@ pv.OFF_SCREEN = True
 THEME = copy.deepcopy(pv.global_theme)
 THEME.multi_samples = 1
 
-__all__ = ["render_mode", "gallery_figure"]
+__all__ = ["render_mode", "gallery_figure", "tile"]
 
 #: Default deformation amplitude as a fraction of the maximum radius.
 DEFAULT_SCALE_FRACTION = 0.06
+#: A render's colour bar starts at this fraction of its width (its labels to the right), its title text
+#: ends above this fraction of its height: the gallery crops both off and draws one colour bar for all
+BAR_X = 0.86
+TEXT_Y = 0.08
+CMAP = "turbo"
+BAR_LABEL = "relative displacement |u| / max |u| (each mode scaled to its own maximum)"
 
 
 # ---------------------------------------------------------------------------
@@ -98,7 +104,7 @@ def render_mode(
         pl.add_mesh(
             deformed,
             scalars="rel. displ.",
-            cmap="turbo",
+            cmap=CMAP,
             clim=(0.0, 1.0),
             smooth_shading=True,
             split_sharp_edges=True,
@@ -107,7 +113,7 @@ def render_mode(
                 title="rel. displ.",
                 color="black",
                 vertical=True,
-                position_x=0.86,
+                position_x=BAR_X,
                 position_y=0.15,
                 width=0.07,
                 height=0.6,
@@ -137,11 +143,24 @@ def render_mode(
     return np.asarray(image)
 
 
+def tile(image):
+    """A render as a gallery tile: without its own colour bar (right of ``BAR_X``) and its title text
+    (above ``TEXT_Y``), which at a tile's size cannot be read; the gallery has one of each."""
+    a = np.asarray(image)
+    h, w = a.shape[:2]
+    return a[int(TEXT_Y * h):, : max(1, int((BAR_X - 0.015) * w))]
+
+
 def gallery_figure(images: Sequence, labels: Sequence[str], ncols: int = 4):
     """A gallery of images (arrays as ``render_mode`` returns) in one figure, one
-    titled tile per image (matplotlib's Agg canvas, no pyplot state).  Save it
-    with ``facecolor="white"``."""
+    titled tile per image (``tile``: without the render's own colour bar and title)
+    and one colour bar for all at the top, readable at the gallery's size (every
+    render has the same scale, 0-1); matplotlib's Agg canvas, no pyplot state.  Save
+    it with ``facecolor="white"``."""
+    from matplotlib import colormaps
     from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.cm import ScalarMappable
+    from matplotlib.colors import Normalize
     from matplotlib.figure import Figure
 
     labels = [str(s) for s in labels]
@@ -152,19 +171,28 @@ def gallery_figure(images: Sequence, labels: Sequence[str], ncols: int = 4):
     ncols = max(1, min(int(ncols), len(images)))
     nrows = -(-len(images) // ncols)
 
-    arrays = [np.asarray(a) for a in images]
+    arrays = [tile(a) for a in images]
     h, w = arrays[0].shape[:2]
     tile_w = 4.0
     tile_h = tile_w * h / w + 0.4  # room for the title
+    bar_h = 1.3                    # inches at the top: the colour bar and its label
+    height = nrows * tile_h + bar_h
     # 80 dpi: tiles of ~320 px, enough to recognise a mode, and a gallery of
     # some 40 modes stays around a megabyte
-    fig = Figure(figsize=(ncols * tile_w, nrows * tile_h), dpi=80)
+    fig = Figure(figsize=(ncols * tile_w, height), dpi=80)
     FigureCanvasAgg(fig)
     axes = fig.subplots(nrows, ncols, squeeze=False)
     for i, ax in enumerate(axes.ravel()):
         ax.set_axis_off()
         if i < len(arrays):
             ax.imshow(arrays[i])
-            ax.set_title(labels[i], fontsize=10)
-    fig.subplots_adjust(left=0.01, right=0.99, bottom=0.01, top=0.95, wspace=0.02, hspace=0.12)
+            ax.set_title(labels[i], fontsize=11)
+    fig.subplots_adjust(left=0.01, right=0.99, bottom=0.01, top=1 - bar_h / height, wspace=0.02, hspace=0.12)
+    width = min(0.6, 8.0 / (ncols * tile_w))       # at most 8 in wide
+    cax = fig.add_axes([0.5 - width / 2, 1 - 0.45 / height, width, 0.22 / height])
+    bar = fig.colorbar(ScalarMappable(Normalize(0.0, 1.0), colormaps[CMAP]), cax=cax, orientation="horizontal",
+                       ticks=[0.0, 0.25, 0.5, 0.75, 1.0])
+    bar.ax.tick_params(labelsize=12)
+    bar.set_label(BAR_LABEL, fontsize=12)
+    bar.ax.xaxis.set_label_position("bottom")
     return fig

@@ -70,7 +70,8 @@ def test_command_line_error_is_one_line(dirs):
     r = subprocess.run([sys.executable, "-m", "pipeline.curve.curving", "--curve", "bad"], cwd=ROOT, env=env,
                        capture_output=True, text=True)
     assert r.returncode == 2
-    assert r.stderr.count("\n") == 1 and "no such vehicle 'nope'" in r.stderr and "Traceback" not in r.stderr
+    assert r.stderr.count("\n") == 1 and "Traceback" not in r.stderr
+    assert "bad.toml: vehicle = 'nope': no such vehicle file" in r.stderr
 
 
 def test_overrides_are_validated_and_change_the_curve():

@@ -199,7 +199,7 @@ def test_passby_written_beside_the_receiver(squeal, tmp_build):
     from scipy.io import wavfile
 
     fs, x = wavfile.read(d / "passby_7.5m.wav")
-    cal = json.loads((d / "passby_7.5m.json").read_text())["payload"]
+    cal = json.loads((d / "passby_7.5m.json").read_text())
     p = x.astype(float) * cal["pa_per_count"]
     assert fs == 44100 and p.size == pytest.approx(float(b["T"]) * fs, abs=2)
     assert WC.level(p) == pytest.approx(float(b["L_eq"]), abs=0.05)          # the file holds the passage

@@ -68,7 +68,7 @@ def test_shipped_curve_end_to_end():
     assert 0.0 < float(a1i["mu_threshold"]) < 0.35
     assert a1i["zeta_needed"]
     md = (out / "verdict.md").read_text()
-    assert "Loudest" in md and "listen.wav" in md
+    assert "Loudest" in md and f"Listen: `{a1i['wav']}`" in md and a1i["wav"].endswith("listen_7.5m.wav")
     assert (out / "bogie.png").stat().st_size > 10_000
     import json
 

@@ -17,8 +17,9 @@ FADE_S = 0.01  # the fade at the end of the file (postprocess.listening.audio.FA
 
 
 def read_calibrated(wav: Path, sidecar: Path):
-    """(fs, pressure (Pa) of the whole file, pressure of its limit-cycle part, sidecar payload)."""
-    payload = json.loads(Path(sidecar).read_text())["payload"]
+    """(fs, pressure (Pa) of the whole file, pressure of its limit-cycle part, the sidecar's fields (flat,
+    beside its ``__provenance__``))."""
+    payload = json.loads(Path(sidecar).read_text())
     fs, x = wavfile.read(wav)
     assert x.dtype == np.int16 and x.ndim == 1
     p = x.astype(float) * payload["pa_per_count"]

@@ -116,7 +116,7 @@ def default_section() -> tuple[list[str], dict | None]:
         import json
 
         (Path(tmp) / "listen.wav").write_bytes(wav)
-        (Path(tmp) / "listen.json").write_text(json.dumps({"payload": cal}))
+        (Path(tmp) / "listen.json").write_text(json.dumps(cal))
         fs, p, lc, cal = WC.read_calibrated(Path(tmp) / "listen.wav", Path(tmp) / "listen.json")
     f_wav = WC.dominant(lc, fs)
     nom, Lb = WC.filter_bank_levels(p, fs, cal["limit_cycle_start_s"], cal["duration_s"] - WC.FADE_S)
