@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from pipeline.store import paths
-from tests.listen import wavcheck as WC
+from pipeline.validation.references import wavcheck as WC
 
 REAL = paths.ROOT / "build"
 NEED = [REAL / "cases" / "default" / f"{s}.npz" for s in ("contact", "greens", "simulate", "radiate")]
