@@ -9,9 +9,11 @@ import numpy as np
 
 EXAGGERATE = 25.0     # lateral shift (and yaw, up to YAW_DRAWN) drawn this many times larger
 YAW_DRAWN = 0.25      # rad: the largest yaw drawn
+CONTACT_SPACING = 1.5  # m between the rolling circles of a standard-gauge wheelset (the plot's scale only)
 
 
 def bogie_figure(info, points, rows):
+    """The figure of the Curve ``info`` with its WheelOperatingPoints ``points`` and verdict ``rows``."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -27,7 +29,7 @@ def bogie_figure(info, points, rows):
     ax.plot(x, -R + np.sqrt(R * R - x * x), color="0.7", lw=0.8, ls="--")
     by = {p.wheel: p for p in points}
     row = {r["wheel"]: r for r in rows}
-    b = 0.5 * info.contact_spacing
+    b = 0.5 * CONTACT_SPACING
     psi_max = max((abs(p.angle_of_attack) for p in points), default=0.0)
     yaw_x = min(EXAGGERATE, YAW_DRAWN / psi_max) if psi_max > 0 else EXAGGERATE   # yaw drawn at most YAW_DRAWN rad
     for axle, xa in (("a1", +a), ("a2", -a)):
@@ -61,7 +63,7 @@ def bogie_figure(info, points, rows):
     ax.set_ylim(-1.5, 1.5)
     ax.set_xlabel("along the track (m)")
     ax.set_ylabel("toward the outer rail (m)")
-    ax.set_title(f"{info.vehicle} in {info.name}: R = {info.radius:g} m, {info.speed_kmh:g} km/h\n"
+    ax.set_title(f"{info.vehicle.name} in {info.name}: R = {info.radius:g} m, {info.speed_kmh:g} km/h\n"
                  f"(shift x{EXAGGERATE:g}, yaw x{yaw_x:.3g}; red: squeals, orange: screen unstable, green: stable; "
                  "square: flange contact)", fontsize=9)
     names = [r["wheel"] for r in rows]
