@@ -48,3 +48,21 @@ def test_operating_point_out_of_range_is_one_line(tmp_path, monkeypatch):
     msg = str(e.value)
     assert "pipeline/curves/r150.toml" in msg and "dy_wr = 0.045" in msg and "a1i" in msg and "\n" not in msg
     assert not (tmp_path / "curves").exists()
+
+
+def test_what_if_coefficients_are_the_contacts_not_its_labels():
+    """The what-ifs' Coulomb curves by coefficient: contact.npz's ``mu_values`` of its Coulomb curves
+    (``rf_law``), to the last bit -- a label holds 10 digits (0.1234567891 for 0.123456789123)."""
+    import numpy as np
+
+    from pipeline.caches.friction_curves import curve_arrays
+    from pipeline.config.nouns import FrictionLaw
+    from pipeline.curve.what_ifs import CaseModels
+
+    curve = {"s": np.zeros(3), "mu_rf": np.zeros(3), "slope": np.zeros(3), "gamma_sat": 0.0}
+    laws = [FrictionLaw.coulomb(0.123456789123), FrictionLaw.of("exponential", {"fkin": 0.14, "fexp1": 0.19,
+                                                                             "sabsh1": 1250.0})]
+    con = curve_arrays([(f.label, f.mu, f.law, curve) for f in laws])
+    assert con["rf_label"][0] == "coulomb(mu=0.1234567891)"
+    ctx = type("Ctx", (), {"contact": con, "spin": 0.0, "friction": laws[0]})()
+    assert CaseModels.of_context(ctx).mus.tolist() == [0.123456789123]
