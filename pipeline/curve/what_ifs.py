@@ -123,7 +123,7 @@ class CaseModels:
 
         ctx = self.ctx
         res = simulate(self.wheel(zeta), ctx.rail_kernel, self.contact(mu),
-                       **ctx.loop.simulate(duration=DURATION, stop=StopRule(window=0.25),
+                       **ctx.loop.simulate(spin=self.spin, duration=DURATION, stop=StopRule(window=0.25),
                                            store_every=max(1, int(round(0.01 / ctx.dt))), final=0.5))
         m = res.measures()
         return {"mu": mu, "L_F2": float(m["L_F2"]), "f": float(m["f_dominant"]),
