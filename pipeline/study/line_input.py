@@ -54,7 +54,7 @@ CONDITIONS = ("dry", "wet")
 ROW_SCHEMA = {
     "id": Field(str, doc="the curve's name on the line; one row per id, vehicle and friction condition"),
     **NUMERIC,
-    "vehicle": Field(str, doc="geometry/vehicles/<vehicle>.toml"),
+    "vehicle": Field(str, doc="<vehicle>.toml beside the CSV, else geometry/vehicles/<vehicle>.toml"),
     "friction": Field(str, doc="'dry' or 'wet' (the study file's [friction] dry_mu, wet_mu) or a Coulomb "
                                "coefficient 0 < mu <= 1"),
 }

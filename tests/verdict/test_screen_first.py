@@ -50,12 +50,16 @@ def test_listed_point_kernel_is_build_kernels():
     _same(got, ref)
 
 
-def test_screen_first_equals_the_curve_stage():
+def test_screen_first_equals_the_curve_stage(monkeypatch):
     """r300 (the metro at 300 m, mu = 0.35): the curve stage screens and runs the time loop for all four
     wheels; screen first, the same screen numbers, and the wheels the screen finds unstable (a2o; a1o
-    with some kernels' last digits) run in the time loop with the same L_F2; the others not run."""
+    with some kernels' last digits) run in the time loop with the same L_F2; the others not run.  Neither
+    path reads a wheel's case file back (its ResolvedCase is handed to the stages in memory)."""
+    import pipeline.config.case_profiles as P
     from pipeline.curve.screen_first import run_screen_first
     from pipeline.curve.stage import run_curve
+
+    monkeypatch.setattr(P, "case_contact", lambda name: pytest.fail(f"case file of {name} read back"))
 
     full = {r["wheel"]: r for r in run_curve("r300", progress_bar=False, what_ifs=False)["rows"]}
     first = {r["wheel"]: r for r in run_screen_first("r300", write=False)["rows"]}
