@@ -50,13 +50,17 @@ def test_listed_point_kernel_is_build_kernels():
     _same(got, ref)
 
 
-def test_screen_first_equals_the_curve_stage():
+def test_screen_first_equals_the_curve_stage(monkeypatch):
     """r300 (the metro at 300 m, mu = 0.35): the curve stage screens and runs the time loop for all four
     wheels; screen first, the same screen numbers, and no wheel run in the time loop: the screen finds
     no growing pole at any of them (certified: solvers/stability/nyquist.py), and the curve stage's time
-    loop finds all four quiet."""
+    loop finds all four quiet.  Neither path reads a wheel's case file back
+    (its ResolvedCase is handed to the stages in memory)."""
+    import pipeline.config.case_profiles as P
     from pipeline.curve.screen_first import run_screen_first
     from pipeline.curve.stage import run_curve
+
+    monkeypatch.setattr(P, "case_contact", lambda name: pytest.fail(f"case file of {name} read back"))
 
     full = {r["wheel"]: r for r in run_curve("r300", progress_bar=False, what_ifs=False)["rows"]}
     first = {r["wheel"]: r for r in run_screen_first("r300", write=False)["rows"]}
