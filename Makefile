@@ -211,15 +211,19 @@ stability-map: | $(STAMP) ## the stability screen over STUDY's grid (seconds; ne
 	@for c in $(STUDY_CASES); do $(MAKE) --no-print-directory contact greens CASE=$$c || exit 1; done
 	$(PY) -m pipeline stability_map --study $(STUDY) $(if $(QUICK),--quick)
 
-# --- a curve's verdict: CURVE=<name> (pipeline/curves/<name>.toml; it names the vehicle, whose file
-# geometry/vehicles/<vehicle>.toml names the wheel; the curve names the rail).  The wheel modes and the rail
-# first (their own rules), then the curve stage: curving, the wheels' case files, contact/greens/screen for
-# every wheel, the time loop, radiation and listening for the unstable ones, the what-ifs
+# --- a curve's verdict: CURVE=<name> (pipeline/curves/<name>.toml) or CURVE=<path> (a curve file anywhere, e.g.
+# outside the repository: a value with a / or ending in .toml).  The curve names the vehicle, looked up beside
+# the curve file first, then in geometry/vehicles/; the vehicle names the wheel, the curve the rail.  Results in
+# $(BUILD)/curves/<the curve file's stem>/.  The wheel modes and the rail first (their own rules), then the
+# curve stage: curving, the wheels' cases, contact/greens/screen for every wheel, the time loop, radiation and
+# listening for the unstable ones, the what-ifs
 CURVE   ?=
-CURVE_F  = pipeline/curves/$(CURVE).toml
+CURVE_IS_PATH = $(or $(findstring /,$(CURVE)),$(filter %.toml,$(CURVE)))
+CURVE_F  = $(if $(CURVE_IS_PATH),$(CURVE),pipeline/curves/$(CURVE).toml)
+CURVE_NAME = $(basename $(notdir $(CURVE_F)))
 TOML_KEY = $(shell sed -n 's/^$(1) *= *"\([^"]*\)".*/\1/p' $(2) 2>/dev/null | head -1)
 VEHICLE  = $(call TOML_KEY,vehicle,$(CURVE_F))
-VEHICLE_F = geometry/vehicles/$(VEHICLE).toml
+VEHICLE_F = $(firstword $(wildcard $(dir $(CURVE_F))$(VEHICLE).toml) geometry/vehicles/$(VEHICLE).toml)
 CURVE_WHEEL = $(or $(call TOML_KEY,wheel,$(VEHICLE_F)),c20)
 CURVE_RAIL  = $(or $(call TOML_KEY,rail,$(CURVE_F)),bv50)
 # the curve's vehicle, wheel and rail files are there and the vehicle's name is its file's (pipeline/store/deps.py
@@ -233,15 +237,15 @@ ifneq ($(CURVE),)
     endif
   endif
 endif
-$(BUILD)/curves/$(CURVE)/verdict.csv: $(CURVE_F) $(wildcard $(VEHICLE_F)) geometry/wheels/$(CURVE_WHEEL).toml geometry/rails/$(CURVE_RAIL).toml $(PROFILES) $(DEPS_curve) | $(STAMP)
+$(BUILD)/curves/$(CURVE_NAME)/verdict.csv: $(CURVE_F) $(wildcard $(VEHICLE_F)) geometry/wheels/$(CURVE_WHEEL).toml geometry/rails/$(CURVE_RAIL).toml $(PROFILES) $(DEPS_curve) | $(STAMP)
 	@$(MAKE) --no-print-directory $(BUILD)/wheels/$(CURVE_WHEEL)/modes.npz $(BUILD)/rails/$(CURVE_RAIL)/rail.npz \
 	  WHEEL=$(CURVE_WHEEL) RAIL=$(CURVE_RAIL) CASE=default
-	$(PY) -m pipeline curve --curve $(CURVE) $(if $(NO_WHAT_IFS),--no-what-ifs)
+	$(PY) -m pipeline curve --curve $(if $(CURVE_IS_PATH),$(abspath $(CURVE_F)),$(CURVE)) $(if $(NO_WHAT_IFS),--no-what-ifs)
 
-curve: ## the verdict of CURVE=<name>: which wheel squeals, f, L_pA, what would stop it -> build/curves/CURVE/verdict.{csv,md}, bogie.png
-	@test -n "$(CURVE)" || { echo "make curve: name the curve, CURVE=<name> (one of: $(notdir $(basename $(wildcard pipeline/curves/*.toml))))" >&2; exit 2; }
-	@test -f "$(CURVE_F)" || { echo "make curve: $(CURVE_F): no such curve file (available: $(notdir $(basename $(wildcard pipeline/curves/*.toml))))" >&2; exit 2; }
-	@$(MAKE) --no-print-directory $(BUILD)/curves/$(CURVE)/verdict.csv CURVE=$(CURVE)
+curve: ## the verdict of CURVE=<name or path to a curve file>: which wheel squeals, f, L_pA, what would stop it -> build/curves/<curve>/verdict.{csv,md}, bogie.png
+	@test -n "$(CURVE)" || { echo "make curve: name the curve, CURVE=<name> (one of: $(notdir $(basename $(wildcard pipeline/curves/*.toml)))) or CURVE=<path to a curve file>" >&2; exit 2; }
+	@test -f "$(CURVE_F)" || { echo "make curve: $(CURVE_F): no such curve file$(if $(CURVE_IS_PATH),, (available: $(notdir $(basename $(wildcard pipeline/curves/*.toml)))))" >&2; exit 2; }
+	@$(MAKE) --no-print-directory $(BUILD)/curves/$(CURVE_NAME)/verdict.csv CURVE=$(CURVE)
 
 # --- calibration of what the thesis does not give (docs/validation, "Calibration"); in this order,
 # each writes its values into the data files (comments kept); none runs in `make` or `make test`

@@ -94,7 +94,7 @@ def hundred_curves(tmp: Path) -> dict:
 
 
 def side_by_side() -> dict:
-    from pipeline.study.line_input import LineRow, write_curves
+    from pipeline.study.line_input import LineRow, line_curves
     from pipeline.study.definition import load_study
     from pipeline.curve import screen_first
     from pipeline.study.radius import design
@@ -107,25 +107,23 @@ def side_by_side() -> dict:
     for i, R in enumerate(SIDE_BY_SIDE):
         v, cant = design(R)
         rows.append(LineRow(i, f"S{i}", 0.0, R, round(1e3 * cant), 50.0, v, "c20_metro", "dry", MU))
-    names = list(write_curves(spec, rows, folder).values())
-    old = os.environ.get("SQUEAL_CURVE_DIR")
-    os.environ["SQUEAL_CURVE_DIR"] = str(folder)
+    curves = [c for c, _ in line_curves(spec, rows, folder).values()]
     t = {"curve stage": 0.0, "screen first": 0.0}
     parts: dict = {}
     agree, n_tl, n_unstable = 0, 0, 0
     try:
-        for name in names:                                  # warm: kernels, curving, numba, modes
-            screen_first.run_screen_first(name, write=False)
-        from pipeline.curve.curving import _solve_cached
+        for curve in curves:                                # warm: kernels, curving, numba, modes
+            screen_first.run_screen_first(curve, write=False)
+        from pipeline.curve.curving import clear
 
-        for name in names:
-            _solve_cached.cache_clear()                     # both paths solve the curving (memoised per process)
+        for curve in curves:
+            clear()                                         # both paths solve the curving (memoised per process)
             t0 = time.perf_counter()
-            full = {r["wheel"]: r for r in run_curve(name, progress_bar=False, what_ifs=False)["rows"]}
+            full = {r["wheel"]: r for r in run_curve(curve, progress_bar=False, what_ifs=False)["rows"]}
             t1 = time.perf_counter()
-            _solve_cached.cache_clear()
+            clear()
             screen_first.TIMES.clear()
-            first = screen_first.run_screen_first(name, write=False)["rows"]
+            first = screen_first.run_screen_first(curve, write=False)["rows"]
             t2 = time.perf_counter()
             t["curve stage"] += t1 - t0
             t["screen first"] += t2 - t1
@@ -136,12 +134,8 @@ def side_by_side() -> dict:
                 n_tl += bool(r["time_loop"])
                 n_unstable += math.isfinite(r["screen_sigma"])
     finally:
-        if old is None:
-            os.environ.pop("SQUEAL_CURVE_DIR", None)
-        else:
-            os.environ["SQUEAL_CURVE_DIR"] = old
         shutil.rmtree(folder, ignore_errors=True)
-    return {"t": t, "parts": parts, "wheels": 4 * len(names), "agree": agree, "time_loop": n_tl}
+    return {"t": t, "parts": parts, "wheels": 4 * len(curves), "agree": agree, "time_loop": n_tl}
 
 
 def run() -> str:

@@ -45,7 +45,8 @@ def _main(argv=None) -> int:
                     "(default: default)")
     ap.add_argument("--workers", type=int, default=None,
                     help="processes for the harmonic solves, Dask workers of a study's local cluster (default: cores)")
-    ap.add_argument("--curve", default=None, help="curve, check: curve file pipeline/curves/<name>.toml")
+    ap.add_argument("--curve", default=None, help="curve, check: a curve file's path (anywhere), or a shipped "
+                                                   "curve's name (pipeline/curves/<name>.toml)")
     ap.add_argument("--no-what-ifs", action="store_true", help="curve: skip the mitigation what-ifs")
     ap.add_argument("--study", default="map", help="study file pipeline/studies/<name>.toml (default: map)")
     ap.add_argument("--quick", action="store_true", help="study: the coarser grid / shorter runs for a quick look")
@@ -93,7 +94,8 @@ def _main(argv=None) -> int:
             from pipeline.curve.stage import run_curve
 
             if not args.curve:
-                raise ConfigError("--curve", detail="the curve stage needs --curve <name> (pipeline/curves/<name>.toml)")
+                raise ConfigError("--curve", detail="the curve stage needs --curve <name or path> (pipeline/curves/<name>.toml, "
+                                                    "or a curve file anywhere)")
             res = run_curve(args.curve, progress_bar=not args.no_progress, what_ifs=not args.no_what_ifs)
             print(res["paths"]["md"])
         elif args.stage == "stability_map":

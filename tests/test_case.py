@@ -168,3 +168,60 @@ def test_a_curve_wheel_runs_through_the_cli(tmp_path):
                        capture_output=True, text=True)
     assert r.returncode == 2 and r.stderr.strip().endswith("run make curve CURVE=r150 first")
     assert len(r.stderr.strip().splitlines()) == 1
+
+
+def test_loop_arguments_are_the_one_translation():
+    """``loop_arguments``: the time loop's arguments of the default case are its file's values (read here
+    with tomllib, apart from the pipeline), the static normal force the contact arrays' when they hold
+    one, the vertical preload for the two-point loop."""
+    import tomllib
+
+    from pipeline.config.case import loop_arguments, resolve_case
+
+    raw = tomllib.loads((paths.ROOT / "pipeline/cases/default.toml").read_text())
+    a = loop_arguments("default")
+    assert (a.dt, a.v, a.gamma_y, a.preload) == (raw["time"]["dt"], raw["kinematics"]["speed"],
+                                                 raw["kinematics"]["gamma_y"], raw["loading"]["preload"])
+    assert a.simulate(store_every=10)["store_every"] == 10 and set(a.linearise()) == {
+        "dt", "v", "gamma_y", "gamma_x", "spin", "preload"}
+    b = loop_arguments(resolve_case("default"), {"preload_normal": 70e3})   # N = Q / cos(delta) of an angled contact
+    assert b.preload == 70e3 and b.two_point()["preload"] == raw["loading"]["preload"] and "spin" not in b.two_point()
+
+
+def test_a_given_case_is_not_read_from_its_file(tmp_path, monkeypatch):
+    """A curve's wheel built in memory (``pipeline.curve.cases.wheel_case``) is what the stages resolve while
+    the curve stage hands it to them (``given``): no case file is read (there is none here), the stage's
+    configuration is derived from the object; outside ``given`` the name needs its file."""
+    import pipeline.config.case_profiles as P
+    from pipeline.config import case as C
+    from pipeline.config.loader import ConfigError
+    from pipeline.curve.cases import wheel_case
+    from pipeline.curve.curving import solve_curve
+    from pipeline.stages.contact import contact_inputs
+
+    monkeypatch.setenv("SQUEAL_BUILD_DIR", str(tmp_path))
+    sol = solve_curve("r150")
+    rc = wheel_case(sol.curve, sol.wheels[1])
+    monkeypatch.setattr(P, "case_contact", lambda name: (_ for _ in ()).throw(AssertionError(f"read {name}")))
+    with C.given([rc]):
+        assert C.resolve_case("r150/a1i") is rc
+        c, pw, pr, cfg = contact_inputs("r150/a1i")
+        assert c is rc.case and cfg["friction"] == sol.curve.friction.config()
+    assert not paths.case_file("r150/a1i").exists()
+    with pytest.raises(ConfigError, match="run make curve CURVE=r150 first"):
+        C.resolve_case("r150/a1i")
+
+
+def test_friction_law_mu_is_a_field():
+    """FrictionLaw's mu is set where the law is resolved: the Coulomb coefficient, or for another law its
+    coefficient at zero slip (the registry's mu_static), not parsed from a curve label."""
+    import dataclasses
+
+    from pipeline.caches.friction_curves import resolve_friction
+    from solvers.contact.friction_laws import get_friction_law
+
+    c = resolve_friction({"law": "coulomb", "mu": 0.123456789}, "x.toml")
+    assert "mu" in {f.name for f in dataclasses.fields(c)} and c.mu == 0.123456789 and c.coulomb_mu == c.mu
+    g = resolve_friction({"law": "exponential", "fkin": 0.14, "fexp1": 0.19, "sabsh1": 1250.0}, "x.toml")
+    assert g.mu == get_friction_law("exponential", fkin=0.14, fexp1=0.19, sabsh1=1250.0).mu_static
+    assert g.mu == pytest.approx(0.14 + 0.19) and g.coulomb_mu is None

@@ -79,14 +79,13 @@ def test_vehicle_named_unlike_its_file_is_refused(tree, goal):
     assert not (tree / "build" / "curves").exists()
 
 
-def test_vehicle_named_unlike_its_file_is_refused_in_python(tmp_path, monkeypatch):
-    from pipeline.curve import curving
+def test_vehicle_named_unlike_its_file_is_refused_in_python(tmp_path):
+    from pipeline.config.curve_inputs import read_vehicle
     from pipeline.config.loader import ConfigError
 
     (tmp_path / "misnamed.toml").write_text(METRO.replace('name = "c20_metro"', 'name = "c20_metro_copy"'))
-    monkeypatch.setenv("SQUEAL_VEHICLE_DIR", str(tmp_path))
     with pytest.raises(ConfigError) as e:
-        curving.load_vehicle("misnamed")
+        read_vehicle("misnamed", beside=tmp_path)          # a user's vehicle beside their curve file
     assert "misnamed.toml" in str(e.value) and "name = 'c20_metro_copy'" in str(e.value)
     assert len(str(e.value).splitlines()) == 1
 
@@ -103,16 +102,15 @@ def test_missing_file_names_the_key_that_asked(tmp_path, what):
     d = {k: tmp_path / k for k in ("cases", "curves", "vehicles", "wheels")}
     for p in d.values():
         p.mkdir()
-    shutil.copy2(ROOT / "geometry" / "vehicles" / "c20_metro.toml", d["vehicles"])
+    shutil.copy2(ROOT / "geometry" / "vehicles" / "c20_metro.toml", d["curves"])     # beside the curve file
     for w in ("c20", "straight"):
         shutil.copy2(ROOT / "geometry" / "wheels" / f"{w}.toml", d["wheels"])
     env = {"SQUEAL_BUILD_DIR": str(tmp_path / "build"), "SQUEAL_CASE_DIR": str(d["cases"]),
-           "SQUEAL_CURVE_DIR": str(d["curves"]), "SQUEAL_VEHICLE_DIR": str(d["vehicles"]),
            "SQUEAL_WHEEL_DIR": str(d["wheels"])}
     case, curve = DEFAULT, R150
     if what == "vehicle wheel":
-        (d["vehicles"] / "c20_metro.toml").write_text(METRO.replace('wheel = "c20"', 'wheel = "c21"'))
-        src, key, value = d["vehicles"] / "c20_metro.toml", "wheel", "c21"
+        (d["curves"] / "c20_metro.toml").write_text(METRO.replace('wheel = "c20"', 'wheel = "c21"'))
+        src, key, value = d["curves"] / "c20_metro.toml", "wheel", "c21"
     elif what == "curve vehicle":
         curve = R150.replace('vehicle = "c20_metro"', 'vehicle = "tram9"')
         src, key, value = d["curves"] / "t.toml", "vehicle", "tram9"
@@ -135,7 +133,8 @@ def test_missing_file_names_the_key_that_asked(tmp_path, what):
         src, key, value = d["wheels"] / "c20.toml", "running_surface.profile", "c20_gone"
     (d["cases"] / "t.toml").write_text(case)
     (d["curves"] / "t.toml").write_text(curve.replace('name = "r150"', 'name = "t"'))
-    runs = ([("curve", "--curve", "t"), ("check", "--curve", "t")] if src.parent.name in ("curves", "vehicles")
+    t = str(d["curves"] / "t.toml")                        # a curve file outside the repository, by its path
+    runs = ([("curve", "--curve", t), ("check", "--curve", t)] if src.parent.name in ("curves", "vehicles")
             else [("contact", "--case", "t"), ("check", "--case", "t")])
     for args in runs:
         r = _cli(env, *args)

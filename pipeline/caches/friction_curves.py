@@ -17,7 +17,6 @@ from __future__ import annotations
 import hashlib
 import logging
 import time
-from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -30,61 +29,8 @@ CURVE_KIND = "friction-curve"
 CURVE_FUNCTIONS = ("pipeline.caches.friction_curves:compute_curve",)  # the code they reach is in the key
 
 
-@dataclass(frozen=True)
-class Friction:
-    """A resolved friction law (``ResolvedCase.friction``): ``law`` ('coulomb', ...), ``params``
-    {name: value} in the units of the registry (``solvers.contact.friction_laws.LAWS``),
-    ``preset``: the friction-modifier preset it came from (or None); ``mu``: the coefficient
-    (``name`` is ``law``, as a ``FrictionLaw`` names itself)."""
-    law: str = "coulomb"
-    params: dict = field(default_factory=dict)
-    preset: str | None = None
-
-    @classmethod
-    def coulomb(cls, mu: float) -> "Friction":
-        return cls("coulomb", {"mu": float(mu)})
-
-    @classmethod
-    def of(cls, name: str, params: dict, preset: str | None = None) -> "Friction":
-        return cls(name, {k: float(v) for k, v in sorted(params.items())}, preset)
-
-    @property
-    def name(self) -> str:
-        return self.law
-
-    @property
-    def label(self) -> str:
-        from solvers.timeloop.inputs import curve_label
-
-        return curve_label(self)
-
-    @property
-    def mu(self) -> float:
-        """The Coulomb coefficient; for another law its local coefficient at zero slip speed
-        (the static coefficient)."""
-        if self.law == "coulomb":
-            return float(self.params["mu"])
-        return float(self.solver_law().mu_static)
-
-    def solver_law(self):
-        """The solver's argument: the float mu for the Coulomb law (today's call of ``rf_curve``,
-        bit for bit), else the registry's ``FrictionLaw``."""
-        if self.name == "coulomb":
-            return float(dict(self.params)["mu"])
-        from solvers.contact.friction_laws import get_friction_law
-
-        return get_friction_law(self.name, **dict(self.params))
-
-    @property
-    def text(self) -> str:
-        """For people: ``mu = 0.35`` (Coulomb), else the law with its parameters (and preset)."""
-        if self.name == "coulomb":
-            return f"mu = {dict(self.params)['mu']:g}"
-        return self.label + (f" (preset {self.preset})" if self.preset else "")
-
-    def config(self) -> dict:
-        """JSON-able form, for configuration hashes."""
-        return {"law": self.name, "params": dict(self.params), "preset": self.preset}
+# a case's resolved [friction] table: the noun of pipeline.config.nouns (law, params, preset, mu)
+from pipeline.config.nouns import FrictionLaw as Friction  # noqa: E402
 
 
 def as_friction(f) -> Friction:

@@ -113,10 +113,10 @@ class ContactGeometry:
         return self.rail_track(Y)
 
 
-def contact_geometry(name: str, c: dict, pw: dict, pr: dict) -> ContactGeometry:
+def contact_geometry(name: str, c: dict, pw: dict, pr: dict, source: str | None = None) -> ContactGeometry:
     """Profiles and rigid contact point of a loaded case; flange contact or
-    profiles that do not meet are a one-line ConfigError naming the case,
-    its offset and why."""
+    profiles that do not meet are a one-line ConfigError naming the case
+    (its file, or ``source``), its offset and why."""
     from geometry.contact_point import FlangeContact, TrackRail, rigid_contact, wheel_shift
 
     wheel, rail, desc = case_profiles(c, pw, pr, {k: (paths.case_file(name), f"contact.{k}_profile")
@@ -127,7 +127,7 @@ def contact_geometry(name: str, c: dict, pw: dict, pr: dict) -> ContactGeometry:
     try:
         rc = rigid_contact(wheel, track, wheel_shift(cc, dy))
     except FlangeContact as e:
-        raise ConfigError(str(paths.case_file(name)), detail=(
+        raise ConfigError(source or str(paths.case_file(name)), detail=(
             f"case '{name}', dy_WR = {1e3 * dy:+.1f} mm (wheel profile {wheel.name}, rail profile {rail.name}, "
             f"c = {1e3 * cc:.2f} mm): {e}; c (contact.rolling_circle_y) places the wheel on the rail and "
             f"depends on the wheel and the track")) from None
@@ -135,19 +135,26 @@ def contact_geometry(name: str, c: dict, pw: dict, pr: dict) -> ContactGeometry:
     return ContactGeometry(wheel, rail, track, pw["tyre"]["rolling_radius"], rc, cfg)
 
 
+def contact_parts(name: str, c: dict, source: str | None = None):
+    """(wheel params, rail params, ContactGeometry) of a validated case dict ``c`` (a case file's or
+    one built in memory: ``source`` names it in errors)."""
+    from pipeline.stages.rail import load_rail_params
+    from pipeline.stages.wheel import load_wheel
+
+    pw, _ = named_file(source or name, "wheel", c["wheel"], load_wheel)   # a missing file: named with the key
+    pr, _ = named_file(source or name, "rail", c["rail"], load_rail_params)
+    return pw, pr, contact_geometry(name, c, pw, pr, source)
+
+
 def case_contact(name: str):
     """(case, wheel params, rail params, ContactGeometry) of a case file:
     the contact point every stage uses (contact, greens, radiate)."""
     from pipeline.config.loader import load
-    from pipeline.stages.rail import load_rail_params
     from pipeline.config.input_schemas import CASE
-    from pipeline.stages.wheel import load_wheel
 
     path = paths.case_file(name)
     c = load(path, CASE)
-    pw, _ = named_file(path, "wheel", c["wheel"], load_wheel)
-    pr, _ = named_file(path, "rail", c["rail"], load_rail_params)
-    return c, pw, pr, contact_geometry(name, c, pw, pr)
+    return (c, *contact_parts(name, c, str(path)))
 
 
 def write_profile(name: str, meta: dict, y, z) -> Path:

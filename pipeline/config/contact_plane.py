@@ -55,9 +55,7 @@ def project_greens(arrays: dict, angle_wheel: float, angle_rail: float) -> dict:
     return out
 
 
-def case_projection(case: str, arrays: dict) -> dict:
-    """``project_greens`` with the case's own angles (the greens stage's hook)."""
-    from pipeline.config.case_profiles import case_contact
-
-    c, _, _, geo = case_contact(case)
-    return project_greens(arrays, *frame_angles(c, geo))
+def case_projection(rc, arrays: dict) -> dict:
+    """``project_greens`` with the angles of the resolved case ``rc`` (``pipeline.config.case``: the
+    greens stage's hook)."""
+    return project_greens(arrays, *frame_angles(rc.case, rc.geometry))

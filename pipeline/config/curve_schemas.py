@@ -1,5 +1,6 @@
 """Schemas of the vehicle files (``geometry/vehicles/<name>.toml``) and the curve files
-(``pipeline/curves/<name>.toml``), validated by ``pipeline.config.loader`` like every input.
+(``pipeline/curves/<name>.toml``, or a user's anywhere), validated by ``pipeline.config.loader`` like
+every input; ``pipeline.config.curve_inputs`` reads them into the nouns ``Vehicle`` and ``Curve``.
 
 Engineers' units, each in its key's name (kN, mm, m, km/h, MN/m, kN m/rad); the pipeline
 converts to SI (``pipeline.curve.curving``).  The ranges are plausibility bounds from trams to
@@ -57,7 +58,7 @@ FRICTION = {
 CURVE = {
     "name": Field(str, doc="short name, used in build paths"),
     "description": Field(str, default=""),
-    "vehicle": Field(str, doc="geometry/vehicles/<vehicle>.toml"),
+    "vehicle": Field(str, doc="<vehicle>.toml beside the curve file, else geometry/vehicles/<vehicle>.toml"),
     "rail": Field(str, default="bv50", doc="geometry/rails/<rail>.toml (inclination, head profile)"),
     "rail_profile": Field(str, default=None,
                           doc="head profile geometry/profiles/<name>.csv (default: the rail file's running_surface)"),

@@ -9,13 +9,12 @@ from __future__ import annotations
 def check_curve(curve: str) -> list[str]:
     """The lines to print for a curve that the curve stage would run; ConfigError (one line) otherwise."""
     from pipeline.curve.cases import wheel_case
-    from pipeline.curve.operating import curve_info, wheel_points
     from pipeline.curve.stage import solve
 
     sol = solve(curve)
-    info, points = curve_info(curve, sol), wheel_points(sol)
+    info, points = sol.curve, sol.wheels
     for p in points:
         wheel_case(info, p)
     aoa = ", ".join(f"{p.wheel} {1e3 * p.angle_of_attack:+.1f} mrad" for p in points)
-    return [f"curve {curve}: configuration OK (vehicle {info.vehicle}, wheel {info.wheel}, rail {info.rail}, "
+    return [f"curve {info.name}: configuration OK (vehicle {info.vehicle.name}, wheel {info.wheel}, rail {info.rail}, "
             f"R = {info.radius:g} m, {info.speed_kmh:g} km/h; steady curving, angle of attack: {aoa})"]

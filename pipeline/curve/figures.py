@@ -1,6 +1,6 @@
 """bogie.png: the leading bogie in the curve (plan view) with its contact points, and the
 verdict per wheel.  The rails are drawn at the running lines (the wheels' rolling circles,
-``CurveInfo.contact_spacing`` apart) and every wheel's contact point on its rail.  A wheelset's
+``CONTACT_SPACING`` apart) and every wheel's contact point on its rail.  A wheelset's
 yaw (its angle of attack, a few milliradians) is drawn exaggerated (the factor is in the title);
 its lateral shift (millimetres, invisible at the scale of a bogie) is written beside each wheel,
 not drawn."""
@@ -39,7 +39,7 @@ def _plan(ax, info, points, rows) -> float:
     import matplotlib.pyplot as plt
     from matplotlib.lines import Line2D
 
-    a, R, b = 0.5 * info.wheelbase, info.radius, 0.5 * info.contact_spacing
+    a, R, b = 0.5 * info.wheelbase, info.radius, 0.5 * CONTACT_SPACING
     x = np.linspace(-1.6 * a - 0.5, 1.6 * a + 0.5, 200)
     for side, name in ((+1, "outer rail"), (-1, "inner rail")):
         r = R + side * b                         # curve centre at (0, -R); y toward the outer rail
@@ -85,12 +85,14 @@ def _plan(ax, info, points, rows) -> float:
                for k, c in COLOURS.items()]
     handles.append(Line2D([], [], marker="s", ls="", mfc="none", mec="k", ms=9, label="flange contact"))
     ax.legend(handles=handles, fontsize=7, loc="lower left", ncol=2, frameon=False)
-    ax.set_title(f"{info.vehicle} in {info.name}: R = {info.radius:g} m, {info.speed_kmh:g} km/h\n"
+    ax.set_title(f"{info.vehicle.name} in {info.name}: R = {info.radius:g} m, {info.speed_kmh:g} km/h\n"
                  f"yaw drawn x{yaw_x:.3g}; beside each wheel its shift dy_WR (+: toward its field side)", fontsize=9)
     return yaw_x
+CONTACT_SPACING = 1.5  # m between the rolling circles of a standard-gauge wheelset (the plot's scale)
 
 
 def bogie_figure(info, points, rows):
+    """The figure of the Curve ``info`` with its WheelOperatingPoints ``points`` and verdict ``rows``."""
     import matplotlib
 
     matplotlib.use("Agg")

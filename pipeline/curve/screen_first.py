@@ -28,14 +28,13 @@ from __future__ import annotations
 
 import contextlib
 import logging
-import math
 import os
 import time
 
 import numpy as np
 
 from pipeline.store import artifacts, paths
-from pipeline.curve.operating import curve_info, wheel_points
+from pipeline.config.case import ResolvedCase, loop_arguments, resolve_case
 
 log = logging.getLogger("pipeline.curve")
 
@@ -76,9 +75,9 @@ def wheel_at_contact(pw: dict, modes: dict, y_w: float) -> dict:
             "wheel_phi": contact_shape(modes["shapes"], where)}
 
 
-def screen_context(case: str):
-    """The ``pipeline.study.context.CaseContext`` of a case from arrays computed here (module notes)."""
-    from pipeline.config.case import resolve_case
+def screen_context(case: "str | ResolvedCase"):
+    """The ``pipeline.study.context.CaseContext`` of a case (a name or a ResolvedCase) from arrays
+    computed here (module notes)."""
     from pipeline.stages.contact import build_contact
     from pipeline.config.rail_contact import rail_point
     from pipeline.curve.rail_point import rail_arrays
@@ -88,74 +87,61 @@ def screen_context(case: str):
     rc = resolve_case(case)
     c, pw, pr, geo = rc.case, rc.wheel, rc.rail, rc.geometry
     if c["contact"].get("points", 1) != 1 or c["contact"].get("angle", "none") != "none":
-        raise ValueError(f"{case}: the screen-first verdict takes one contact point in the track's frame "
+        raise ValueError(f"{rc.name}: the screen-first verdict takes one contact point in the track's frame "
                          "(a curve wheel's case: [contact] points = 1, angle = 'none')")
-    con = build_contact(c, pw, geo, diagnostics=False)   # the NORM table's error check: the stage's job
+    con = build_contact(c, pw, geo, frictions=[rc.friction], diagnostics=False)   # the NORM table's error check: the stage's job
     t0 = _tick("contact", t0)
     modes = wheel_modes(c["wheel"], pw)
-    dt, v = c["time"]["dt"], c["kinematics"]["speed"]
+    loop = loop_arguments(rc, con)
+    dt, v = loop.dt, loop.v
     arrays = wheel_at_contact(pw, modes, geo.contact.y_wheel)
     t0 = _tick("wheel", t0)
-    yr = rail_point(c["rail"], pr, geo.contact.y_rail, case)
+    yr = rail_point(c["rail"], pr, geo.contact.y_rail, rc.name)
     rail = rail_arrays(pr, yr, v, dt)
     arrays["rail_kernel"] = rail["rail_kernel"]
     _tick("rail kernel", t0)
     wheel = {"f": arrays["wheel_f"], "mass": arrays["wheel_mass"], "zeta": arrays["wheel_zeta"],
              "phi": arrays["wheel_phi"], "n": modes["n"], "m": modes["m"], "cls": modes["cls"].astype(str),
              "kind": modes["kind"].astype(str)}
-    return CaseContext(case=case, inputs="", dy_wr=c["contact"]["dy_wr"], dt=dt, v=v,
-                       preload=c["loading"]["preload"], gamma_x=c["kinematics"]["gamma_x"],
-                       gamma_y=c["kinematics"]["gamma_y"], mu=rc.friction.mu, friction=rc.friction,
-                       tangential=c["contact"]["model"], normal=c["contact"]["normal"], contact=con, wheel=wheel,
-                       rail_kernel=arrays["rail_kernel"], radiation=None, radiation_note="not requested")
+    return CaseContext(case=rc.name, inputs="", dy_wr=c["contact"]["dy_wr"], loop=loop, mu=rc.friction.mu,
+                       friction=rc.friction, contact=con, wheel=wheel, rail_kernel=arrays["rail_kernel"],
+                       radiation=None, radiation_note="not requested")
 
 
-def screen(case: str, gamma_y: float):
+def screen(case: "str | ResolvedCase", gamma_y: float):
     """(fastest growing wheel-mode pole or None, its mode label, the CaseContext or None) of a curve
     wheel, as ``stage.screen_wheel`` finds it, from ``screen_context``."""
     from solvers.stability.mitigation import growing_wheel_root
 
-    from pipeline.config.case import resolve_case
     from pipeline.curve.what_ifs import CaseModels
 
     if gamma_y == 0.0:
         return None, "", None
     ctx = screen_context(case)
     t0 = time.perf_counter()
-    spin = float(resolve_case(case).case["kinematics"].get("spin", 0.0))
-    models = CaseModels.of_context(ctx, spin, ctx.friction)
+    models = CaseModels.of_context(ctx)
     r = growing_wheel_root(models.roots(ctx.mu))
     _tick("screen", t0)
     return r, (ctx.label(r.mode) if r is not None else ""), ctx
 
 
-def time_loop_L_F2(case: str, ctx) -> float:
+def time_loop_L_F2(case: "str | ResolvedCase", ctx) -> float:
     """L_F2 (dB re 1 N) of the simulate stage's time loop of the case, from the screen's arrays: the
     same call as ``stages.simulate.run_simulate`` (so the same number), without its files and figure."""
     from solvers.timeloop.interaction import WheelModes, contact_model, simulate
 
-    from pipeline.config.case import resolve_case
-    from pipeline.stages.simulate import case_preload
-
-    c = resolve_case(case).case
     w = ctx.wheel
     res = simulate(WheelModes(w["f"], w["mass"], w["zeta"], w["phi"]), ctx.rail_kernel,
-                   contact_model(ctx.contact, ctx.friction), dt=c["time"]["dt"], v=c["kinematics"]["speed"],
-                   gamma_y=c["kinematics"]["gamma_y"], gamma_x=c["kinematics"]["gamma_x"],
-                   spin=c["kinematics"].get("spin", 0.0), preload=case_preload(c, ctx.contact),
-                   duration=c["time"]["duration"], tangential=c["contact"]["model"], normal=c["contact"]["normal"],
-                   store_every=10)
+                   contact_model(ctx.contact, ctx.friction),
+                   **loop_arguments(resolve_case(case), ctx.contact).simulate(store_every=10))
     return float(res.measures()["L_F2"])
 
 
 def quiet_row(p, root, label: str) -> dict:
     """A verdict.csv row of a wheel the time loop is not run for (``stage.COLUMNS``)."""
-    from pipeline.curve.stage import COLUMNS
+    from pipeline.curve.stage import operating_row
 
-    row = {k: getattr(p, k) for k in COLUMNS if k in p._fields}
-    row |= {"screen_sigma": math.nan, "screen_f": math.nan, "screen_mode": "", "squeals": False,
-            "f_squeal": math.nan, "mode": "", "L_F2": math.nan, "L_W": math.nan, "L_pA": math.nan,
-            "mu_threshold": math.nan, "zeta_needed": "", "wav": ""}
+    row = operating_row(p)
     if root is not None:
         row |= {"screen_sigma": float(root.sigma), "screen_f": float(root.f_hz), "screen_mode": label}
     return row
@@ -187,40 +173,42 @@ def without_figures(skip: bool = True):
             setattr(m, attr, f)
 
 
-def run_screen_first(curve: str, *, what_ifs: bool = False, write: bool = True, figures: bool = True) -> dict:
-    """The verdict of ``curve`` screen first (module notes): {'rows': one per wheel (``stage.COLUMNS``,
-    plus ``time_loop``: whether it ran), 'info': CurveInfo}; ``write``: build/curves/<curve>/verdict.csv;
-    ``figures``: the stages of a squealing wheel draw their figures (``without_figures`` otherwise)."""
+def run_screen_first(curve, *, what_ifs: bool = False, write: bool = True, figures: bool = True) -> dict:
+    """The verdict of ``curve`` (a Curve, a path to a curve file or a shipped name) screen first
+    (module notes): {'rows': one per wheel (``stage.COLUMNS``, plus ``time_loop``: whether it ran),
+    'info': the Curve}; ``write``: build/curves/<curve>/verdict.csv; ``figures``: the stages of a
+    squealing wheel draw their figures (``without_figures`` otherwise)."""
     from solvers.study import squeals
 
+    from pipeline.config.case import given
     from pipeline.curve.cases import wheel_case, write_case
     from pipeline.curve.verdict_report import cell
     from pipeline.curve.stage import COLUMNS, solve, wheel_verdict
 
     t0 = time.perf_counter()
     sol = solve(curve)
-    info, points = curve_info(curve, sol), wheel_points(sol)
+    info, points = sol.curve, sol.wheels
     cases = [wheel_case(info, p) for p in points]      # every operating point checked before any work
-    for c in cases:
-        write_case(c)
+    for rc in cases:
+        write_case(rc)
     t0 = _tick("curving", t0)
     rows = []
-    for p in points:
-        name = f"{info.name}/{p.wheel}"
-        root, label, ctx = screen(name, p.gamma_y)
-        if root is None:
-            rows.append(quiet_row(p, root, label) | {"time_loop": False})
-            continue
-        t0 = time.perf_counter()
-        L_F2 = time_loop_L_F2(name, ctx)
-        t0 = _tick("time loop (unstable wheels)", t0)
-        if not squeals(L_F2):                 # the time loop overrules the screen: quiet, no stage to run
-            rows.append(quiet_row(p, root, label) | {"L_F2": L_F2, "time_loop": True})
-            continue
-        with without_figures(not figures):
-            rows.append(wheel_verdict(info, p, what_ifs=what_ifs) | {"time_loop": True})
-        _tick("stages of squealing wheels", t0)
+    with given(cases):
+        for p, rc in zip(points, cases):
+            root, label, ctx = screen(rc, p.gamma_y)
+            if root is None:
+                rows.append(quiet_row(p, root, label) | {"time_loop": False})
+                continue
+            t0 = time.perf_counter()
+            L_F2 = time_loop_L_F2(rc, ctx)
+            t0 = _tick("time loop (unstable wheels)", t0)
+            if not squeals(L_F2):                 # the time loop overrules the screen: quiet, no stage to run
+                rows.append(quiet_row(p, root, label) | {"L_F2": L_F2, "time_loop": True})
+                continue
+            with without_figures(not figures):
+                rows.append(wheel_verdict(info, p, what_ifs=what_ifs) | {"time_loop": True})
+            _tick("stages of squealing wheels", t0)
     if write:
-        artifacts.save_csv(paths.curve_dir(curve) / "verdict.csv", COLUMNS,
+        artifacts.save_csv(paths.curve_dir(info.name) / "verdict.csv", COLUMNS,
                            ([cell(r[k]) for k in COLUMNS] for r in rows))
     return {"rows": rows, "info": info}

@@ -1,9 +1,13 @@
-"""The curve stage: from a curve and a vehicle to a verdict (``make curve CURVE=<name>``,
-``python -m pipeline curve --curve <name>``).
+"""The curve stage: from a curve and a vehicle to a verdict (``make curve CURVE=<name or path>``,
+``python -m pipeline curve --curve <name or path>``; a path may lie outside the repository:
+``pipeline.config.curve_inputs``).
 
-1. steady curving of the leading bogie (``pipeline.curve.curving.solve_curve``): every wheel's
-   operating point;
-2. each wheel becomes a case file ``$BUILD/curves/<curve>/cases/<wheel>.toml`` (``cases.py``);
+1. the curve file is read once into a ``Curve`` (its ``Vehicle`` and ``FrictionLaw``), then steady
+   curving of the leading bogie (``pipeline.curve.curving.solve_curve``): every wheel's
+   ``WheelOperatingPoint``;
+2. each wheel becomes a ``ResolvedCase`` in memory (``cases.py``), handed to the stages
+   (``pipeline.config.case.given``); its case file ``$BUILD/curves/<curve>/cases/<wheel>.toml`` is
+   written as a record (``make <stage> CASE=<curve>/<wheel>``), not read back;
 3. contact, greens and the stability screen for every wheel (the screen through
    ``mitigation.CaseModels``, which also takes a wheel whose lateral creepage is positive, as the
    mirror image y -> -y of the point-contact loop: its cross receptances change sign);
@@ -26,7 +30,7 @@ import numpy as np
 from pipeline.store import artifacts, paths
 from pipeline.store.atomic import save_figure, save_text
 from pipeline.progress import progress
-from pipeline.curve.operating import CurveInfo, WheelPoint, _get, curve_info, wheel_points
+from pipeline.config.nouns import OPERATING_FIELDS, Curve, WheelOperatingPoint
 
 log = logging.getLogger("pipeline.curve")
 
@@ -47,22 +51,30 @@ def one_line(e):
     return ConfigError(e.source, detail="; ".join(issue_text(*x) for x in e.errors))
 
 
-def solve(curve: str):
-    """The curving solution of ``curve`` (pipeline.curve.curving; a bad curve or vehicle file: a
-    ConfigError in one line)."""
+def solve(curve):
+    """The curving solution of ``curve`` (a Curve, a path to a curve file or a shipped name;
+    pipeline.curve.curving; a bad curve or vehicle file: a ConfigError in one line)."""
+    from pipeline.config.curve_inputs import read_curve
     from pipeline.config.loader import ConfigError
     from pipeline.curve.curving import solve_curve
 
     from solvers.curving import CurvingError
 
     try:
+        curve = read_curve(curve)
         return solve_curve(curve)
     except ConfigError as e:
         raise one_line(e) from None
     except CurvingError as e:          # no equilibrium: the curve and vehicle are valid, the verdict has no input
-        from pipeline.curve.curving import curve_file
+        raise ConfigError(str(curve.source), detail=f"no steady curving state: {e}") from None
 
-        raise ConfigError(str(curve_file(curve)), detail=f"no steady curving state: {e}") from None
+
+def operating_row(p: WheelOperatingPoint) -> dict:
+    """A verdict.csv row of a wheel before its verdict: its operating point's columns, the rest empty."""
+    row = {k: getattr(p, k) for k in COLUMNS if k in OPERATING_FIELDS}
+    return row | {"screen_sigma": math.nan, "screen_f": math.nan, "screen_mode": "", "squeals": False,
+                  "f_squeal": math.nan, "mode": "", "L_F2": math.nan, "L_W": math.nan, "L_pA": math.nan,
+                  "mu_threshold": math.nan, "zeta_needed": "", "wav": ""}
 
 
 def run_stages(name: str, stages) -> None:
@@ -92,17 +104,15 @@ def screen_wheel(name: str, gamma_y: float) -> tuple:
     return models, r, (models.ctx.label(r.mode) if r is not None else "")
 
 
-def wheel_verdict(info: CurveInfo, p: WheelPoint, *, what_ifs: bool = True) -> dict:
+def wheel_verdict(curve: Curve, p: WheelOperatingPoint, *, what_ifs: bool = True) -> dict:
     """One verdict.csv row: contact, greens and the screen for the wheel's case; the time loop (the
     simulate stage) for every wheel with lateral creepage, confirming or overruling the screen; for a
-    squealing wheel radiation, listening and the mitigation what-ifs."""
+    squealing wheel radiation, listening and the mitigation what-ifs.  The wheel's ResolvedCase is
+    the one handed to the stages (``pipeline.config.case.given``)."""
     from pipeline.curve.what_ifs import damping_what_if, friction_what_if
 
-    name = f"{info.name}/{p.wheel}"
-    row = {k: getattr(p, k) for k in COLUMNS if k in p._fields}
-    row |= {"screen_sigma": math.nan, "screen_f": math.nan, "screen_mode": "", "squeals": False, "f_squeal": math.nan,
-            "mode": "", "L_F2": math.nan, "L_W": math.nan, "L_pA": math.nan, "mu_threshold": math.nan,
-            "zeta_needed": "", "wav": ""}
+    name = f"{curve.name}/{p.wheel}"
+    row = operating_row(p)
     run_stages(name, ["contact", "greens"])
     models, root, label = screen_wheel(name, p.gamma_y)
     if root is not None:
@@ -141,31 +151,34 @@ def wheel_verdict(info: CurveInfo, p: WheelPoint, *, what_ifs: bool = True) -> d
     return row
 
 
-def run_curve(curve: str, *, progress_bar: bool = True, what_ifs: bool = True) -> dict:
-    """The verdict of ``curve`` (module notes).  Returns {'rows', 'info', 'paths'}."""
+def run_curve(curve, *, progress_bar: bool = True, what_ifs: bool = True) -> dict:
+    """The verdict of ``curve`` (a Curve, a path to a curve file or a shipped name; module notes).
+    Returns {'rows', 'info' (the Curve), 'paths'}."""
+    from pipeline.config.case import given
     from pipeline.curve import figures as plot, verdict_report as report
     from pipeline.curve.cases import wheel_case, write_case
 
     t0 = time.perf_counter()
     sol = solve(curve)
-    info, points = curve_info(curve, sol), wheel_points(sol)
+    info, points = sol.curve, sol.wheels
     cases = [wheel_case(info, p) for p in points]         # every operating point checked before any work
-    for c in cases:
-        write_case(c)
+    for rc in cases:
+        write_case(rc)
     rows = []
-    for p in progress(points, enabled=progress_bar, desc=f"curve {curve}", unit="wheel"):
-        rows.append(wheel_verdict(info, p, what_ifs=what_ifs))
-    out = paths.curve_dir(curve)
+    with given(cases):
+        for p in progress(points, enabled=progress_bar, desc=f"curve {info.name}", unit="wheel"):
+            rows.append(wheel_verdict(info, p, what_ifs=what_ifs))
+    out = paths.curve_dir(info.name)
     artifacts.save_csv(out / "verdict.csv", COLUMNS, ([report.cell(r[k]) for k in COLUMNS] for r in rows))
     save_figure(plot.bogie_figure(info, points, rows), out / "bogie.png", dpi=110)
     md = report.verdict_markdown(info, points, rows, wall=time.perf_counter() - t0)
     save_text(md, out / "verdict.md")
-    cfg = {"curve": _get(sol, "curve"), "vehicle": _get(sol, "vehicle"), "cases": cases, "what_ifs": what_ifs}
+    cfg = {"curve": info.data, "vehicle": info.vehicle.data, "cases": [rc.case for rc in cases], "what_ifs": what_ifs}
     artifacts.save_json(out / "verdict.json", "curve-verdict", cfg,
                         [{k: (None if isinstance(v, float) and not math.isfinite(v) else v)
                           for k, v in r.items() if k in COLUMNS} for r in rows])
     loud = report.loudest(rows)
-    log.info("curve %s: %s -> %s", curve, f"{loud['wheel']} squeals at {loud['f_squeal']:.0f} Hz, "
+    log.info("curve %s: %s -> %s", info.name, f"{loud['wheel']} squeals at {loud['f_squeal']:.0f} Hz, "
              f"L_pA = {loud['L_pA']:.1f} dB(A)" if loud else "no wheel squeals", out / "verdict.md")
     return {"rows": rows, "info": info, "paths": {"csv": out / "verdict.csv", "md": out / "verdict.md",
                                                  "png": out / "bogie.png"}}

@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-from pipeline.curve.operating import CurveInfo
+from pipeline.config.nouns import Curve
 
 
 def cell(v):
@@ -31,10 +31,10 @@ def _f(x, fmt=".1f", unit=""):
     return "-" if x is None or (isinstance(x, float) and not math.isfinite(x)) else f"{x:{fmt}}{unit}"
 
 
-def verdict_markdown(info: CurveInfo, points, rows: list[dict], wall: float) -> str:
+def verdict_markdown(info: Curve, points, rows: list[dict], wall: float) -> str:
     """The verdict in words, then the table per wheel and the mitigation what-ifs."""
     loud = loudest(rows)
-    head = (f"# Curve {info.name}: {info.vehicle}, R = {info.radius:g} m, {info.speed_kmh:g} km/h, "
+    head = (f"# Curve {info.name}: {info.vehicle.name}, R = {info.radius:g} m, {info.speed_kmh:g} km/h, "
             f"cant {1e3 * info.cant:g} mm\n\n")
     if loud is None:
         unstable = [r["wheel"] for r in rows if math.isfinite(r["screen_sigma"])]
@@ -77,7 +77,7 @@ def verdict_markdown(info: CurveInfo, points, rows: list[dict], wall: float) -> 
             f"{'yes' if r['squeals'] else 'no'} | {_f(r['f_squeal'], '.0f')} | {r['mode'] or '-'} | "
             f"{_f(r['L_F2'])} | {_f(r['L_W'])} | {_f(r['L_pA'])} | {_f(r['mu_threshold'], '.3f')} | "
             f"{r['zeta_needed'] or '-'} |")
-    tail = (f"\n\nFriction {info.friction}; wheel {info.wheel}, rail {info.rail}, gauge {1e3 * info.gauge:.0f} mm.  "
+    tail = (f"\n\nFriction {info.friction.text}; wheel {info.wheel}, rail {info.rail}, gauge {1e3 * info.gauge:.0f} mm.  "
             "Screen: the fastest growing closed-loop pole at a wheel mode (growth rate, 1/s); squeal is the time "
             "loop's verdict (L_F2 >= 10 dB re 1 N, SPEC 6).  Artifacts of each wheel: "
             f"`build/cases/{info.name}/<wheel>/`; its case file: `build/curves/{info.name}/cases/<wheel>.toml`.  "

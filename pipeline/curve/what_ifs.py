@@ -43,31 +43,25 @@ class CaseModels:
     """One case's linearised and time-domain models at any friction coefficient and wheel damping."""
 
     def __init__(self, case: str):
-        from pipeline.config.case import resolve_case
-        from pipeline.caches.friction_curves import case_friction
         from pipeline.study.context import load_context
 
-        c = resolve_case(case).case
-        self._setup(load_context(case, radiation=False), float(c["kinematics"].get("spin", 0.0)),
-                    case_friction(c, case))
+        self._setup(load_context(case, radiation=False))
 
     @classmethod
-    def of_context(cls, ctx, spin: float, friction) -> "CaseModels":
-        """The models of a CaseContext built in memory (``pipeline.curve.screen_first``: no artifacts);
-        ``spin`` (1/m) and ``friction`` (``pipeline.caches.friction_curves.Friction``) as the case's."""
+    def of_context(cls, ctx) -> "CaseModels":
+        """The models of a CaseContext built in memory (``pipeline.curve.screen_first``: no artifacts)."""
         self = cls.__new__(cls)
-        self._setup(ctx, float(spin), friction)
+        self._setup(ctx)
         return self
 
-    def _setup(self, ctx, spin: float, friction) -> None:
-        from solvers.timeloop.inputs import curve_labels
+    def _setup(self, ctx) -> None:
+        from pipeline.caches.friction_curves import stored_entries
 
         self.ctx = ctx
-        self.spin = spin                                      # 1/m
-        self.friction = friction                              # the case's own law (its curve is in contact.npz)
-        # the Coulomb curves the contact artifact holds (labels 'coulomb(mu=0.35)'), by coefficient
-        self.mus = np.array([float(lab.split("=")[1].rstrip(")")) for lab in curve_labels(self.ctx.contact)
-                             if lab.startswith("coulomb(mu=")], float)
+        self.spin = float(ctx.spin)                           # 1/m
+        self.friction = ctx.friction                          # the case's own law (its curve is in contact.npz)
+        # the Coulomb curves the contact artifact holds, by coefficient (its mu_values, law by law)
+        self.mus = np.array([mu for _, mu, law, _ in stored_entries(ctx.contact) if law == "coulomb"], float)
 
     @property
     def coulomb(self) -> bool:
@@ -112,8 +106,7 @@ class CaseModels:
             kernel[:, 0, 1] *= -1.0
             kernel[:, 1, 0] *= -1.0
             spin = -spin
-        lm = linearise(wheel, kernel, self.contact(mu), dt=c.dt, v=c.v, gamma_y=-abs(c.gamma_y), preload=c.preload,
-                       gamma_x=c.gamma_x, spin=spin)
+        lm = linearise(wheel, kernel, self.contact(mu), **c.loop.linearise(gamma_y=-abs(c.gamma_y), spin=spin))
         return [r._replace(mode=int(idx[r.mode]) if r.mode >= 0 else -1) for r in screen(lm)]
 
     def unstable(self, mu: float) -> bool:
@@ -129,10 +122,9 @@ class CaseModels:
         from solvers.timeloop.interaction import StopRule, simulate
 
         ctx = self.ctx
-        res = simulate(self.wheel(zeta), ctx.rail_kernel, self.contact(mu), dt=ctx.dt, v=ctx.v, gamma_y=ctx.gamma_y,
-                       gamma_x=ctx.gamma_x, spin=self.spin, preload=ctx.preload, duration=DURATION,
-                       tangential=ctx.tangential, normal=ctx.normal, stop=StopRule(window=0.25),
-                       store_every=max(1, int(round(0.01 / ctx.dt))), final=0.5)
+        res = simulate(self.wheel(zeta), ctx.rail_kernel, self.contact(mu),
+                       **ctx.loop.simulate(spin=self.spin, duration=DURATION, stop=StopRule(window=0.25),
+                                           store_every=max(1, int(round(0.01 / ctx.dt))), final=0.5))
         m = res.measures()
         return {"mu": mu, "L_F2": float(m["L_F2"]), "f": float(m["f_dominant"]),
                 "squeals": squeals(m["L_F2"], SQUEAL_LEVEL_DB)}

@@ -102,9 +102,11 @@ def build_contact(c: dict, pw: dict, geo, n_table: int = 41, frictions=None, cur
 def run_contact(case: str) -> dict:
     from pipeline.caches.friction_curves import contact_curve_cache
 
+    from pipeline.config.case import resolve_case
     from pipeline.config.check import outer_wheel_note, over_radial_note
 
     c, pw, pr, geo, cfg = contact_setup(case)
+    friction = resolve_case(case).friction                # resolved once, with the case
     if over_radial_note(c):
         log.warning("note: case %s: %s", case, over_radial_note(c))
     elif outer_wheel_note(c):
@@ -112,11 +114,11 @@ def run_contact(case: str) -> dict:
     t0 = time.perf_counter()
     cache = contact_curve_cache(case)
     try:
-        arrays = build_contact(c, pw, geo, curve=cache)
+        arrays = build_contact(c, pw, geo, frictions=[friction], curve=cache)
         if c["contact"].get("points", 1) == 2:  # [contact] points = 2: the second patch (pipeline/stages/second_point.py)
             from pipeline.stages.second_point import second_contact_arrays
 
-            arrays.update(second_contact_arrays(case, c, pw, geo, float(arrays["preload_normal"])))
+            arrays.update(second_contact_arrays(case, c, pw, geo, float(arrays["preload_normal"]), friction))
     except ConformalContact as e:                      # a contact of the case's input: one line, no traceback
         from pipeline.config.loader import ConfigError
 

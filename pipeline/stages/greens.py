@@ -120,6 +120,8 @@ def rail_greens(pr: dict, rail_hash: str, y_r: float, v: float, dt: float) -> tu
 
 
 def run_greens(case: str) -> dict:
+    from pipeline.config.case import resolve_case
+
     c, pw, pr, modes, (yw, yr, y_rail_contact), cfg = greens_inputs(case)
     dt, v = c["time"]["dt"], c["kinematics"]["speed"]
     t0 = time.perf_counter()
@@ -129,7 +131,7 @@ def run_greens(case: str) -> dict:
     t1 = time.perf_counter()
     rail, cached = rail_greens(pr, cfg["rail"], yr, v, dt)
     arrays.update(rail)
-    arrays = case_projection(case, arrays)  # [contact] angle: the contact plane's frame (pipeline/config/contact_plane.py)
+    arrays = case_projection(resolve_case(case), arrays)  # [contact] angle: the contact plane's frame (pipeline/config/contact_plane.py)
     if c["contact"].get("points", 1) == 2:  # [contact] points = 2: both points (pipeline/stages/greens_two_point.py)
         from pipeline.stages.greens_two_point import second_greens
 

@@ -80,10 +80,11 @@ def second_greens(case: str, pw: dict, pr: dict, modes: dict, y_rail_a: float, d
     from solvers.contact.frame import project_shapes, project_transfer
     from solvers.wheel.receptance import contact_point, contact_shape
 
-    from pipeline.config.case_profiles import case_contact
+    from pipeline.config.case import resolve_case
     from pipeline.stages.second_point import second_zone
 
-    c, _, _, geo = case_contact(case)
+    rc = resolve_case(case)
+    c, geo = rc.case, rc.geometry
     zone = second_zone(case, c, geo)
     (wa, ra), (wb, rb) = point_frames(c, geo, zone)
     surface = np.unique(np.concatenate([modes["boundary_tread"], modes["boundary_flange"]]))

@@ -224,10 +224,9 @@ def run_radiate(case: str) -> dict:
 
 
 def _case_speed(case: str) -> float:
-    from pipeline.config.loader import load
-    from pipeline.config.input_schemas import CASE
+    from pipeline.config.case import resolve_case
 
-    return float(load(paths.case_file(case), CASE)["kinematics"]["speed"])
+    return float(resolve_case(case).case["kinematics"]["speed"])
 
 
 def plot_radiation(a: dict, path, case: str) -> None:

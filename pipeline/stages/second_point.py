@@ -75,19 +75,20 @@ def second_zone(name: str, c: dict, geo) -> SecondZone:
     return SecondZone(y2, Y2, geo.rail_track.to_rail(Y2), delta, e, r_b, turned_geometry(geo, y2, Y2, delta, r_b))
 
 
-def second_contact_arrays(name: str, c: dict, pw: dict, geo, F_L: float, n_table: int = 41) -> dict:
+def second_contact_arrays(name: str, c: dict, pw: dict, geo, F_L: float, friction, n_table: int = 41) -> dict:
     """The contact stage's arrays of the second patch (keys ``b_*``): its gap, NORM table over
     0 .. 2x the approach at which it alone would carry F_L (the first patch's static normal force:
-    the range the load can move through), compliances, and the friction curve for the case's mu."""
+    the range the load can move through), compliances, and the friction curve of ``friction`` (the
+    case's resolved ``FrictionLaw``)."""
     from solvers.contact.compliance import compliance_table
     from solvers.contact.norm import norm_table
 
     from solvers.contact.static import DY, static_contact
-    from pipeline.caches.friction_curves import case_friction, compute_curve, curve_arrays, entries_of
+    from pipeline.caches.friction_curves import compute_curve, curve_arrays, entries_of
 
     z = second_zone(name, c, geo)
     E, nu = pw["material"]["E"], pw["material"]["nu"]
-    v, dt, friction = c["kinematics"]["speed"], c["time"]["dt"], case_friction(c, name)
+    v, dt = c["kinematics"]["speed"], c["time"]["dt"]
     dx = v * dt
     x, y, gap, A, B, xi_static, static = static_contact(z.gap_geometry, E, nu, F_L, dx)
     xi_nodes = np.linspace(0.0, 2.0 * xi_static, n_table)

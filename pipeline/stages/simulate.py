@@ -28,13 +28,6 @@ def simulate_config(case: str):
     return c, ccfg, gcfg, {"contact": ccfg, "greens": gcfg, "case": {k: v for k, v in c.items() if k != "listener"}}
 
 
-def case_preload(c: dict, con) -> float:
-    """The static normal force: the contact stage's (resolved in the contact plane, [contact] angle), or
-    the case's preload in a contact artifact without it."""
-    files = con.files if hasattr(con, "files") else con
-    return float(con["preload_normal"]) if "preload_normal" in files else c["loading"]["preload"]
-
-
 def case_arrays(case: str):
     """(case, this stage's config, contact arrays, greens arrays, WheelModes) of a case, each artifact
     checked against the case's configuration (the simulate and stability stages' inputs)."""
@@ -52,21 +45,18 @@ def run_simulate(case: str) -> dict:
 
     from solvers.timeloop.interaction import contact_model, simulate
 
-    from pipeline.caches.friction_curves import case_friction
+    from pipeline.config.case import loop_arguments, resolve_case
 
     t0 = time.perf_counter()
     c, cfg, con, gr, wheel = case_arrays(case)
+    rc = resolve_case(case)
     out = paths.case_dir(case)
-    cm = contact_model(con, case_friction(c, case))
+    cm = contact_model(con, rc.friction)
     if c["contact"].get("points", 1) == 2:  # [contact] points = 2: the two-point loop (pipeline/stages/simulate_two_point.py)
         from pipeline.stages.simulate_two_point import simulate_two_point_case
 
         return simulate_two_point_case(case, c, con, gr, cm, wheel, cfg, plot_forces, t0)
-    res = simulate(wheel, gr["rail_kernel"], cm, dt=c["time"]["dt"], v=c["kinematics"]["speed"],
-                   gamma_y=c["kinematics"]["gamma_y"], gamma_x=c["kinematics"]["gamma_x"],
-                   spin=c["kinematics"].get("spin", 0.0),
-                   preload=case_preload(c, con), duration=c["time"]["duration"],
-                   tangential=c["contact"]["model"], normal=c["contact"]["normal"], store_every=10)
+    res = simulate(wheel, gr["rail_kernel"], cm, **loop_arguments(rc, con).simulate(store_every=10))
     m = res.measures()
     arrays = {"t": res.t, "F": res.F, "slip": res.slip, "state": res.state, "t_final": res.t_final,
               "F_final": res.F_final, "slip_final": res.slip_final, "state_final": res.state_final,

@@ -29,31 +29,31 @@ def second_creepages(c: dict, con) -> tuple[float, float]:
     return (1.0 + gx) * r_b / r_a - 1.0, gy * cb / ca
 
 
-def second_point(c: dict, con, gr):
-    """(SecondPoint, rail blocks) of a two-point case from its contact and greens arrays."""
+def second_point(c: dict, con, gr, friction):
+    """(SecondPoint, rail blocks) of a two-point case from its contact and greens arrays (``friction``:
+    the case's resolved FrictionLaw)."""
     from solvers.timeloop.two_point_driver import SecondPoint
 
-    from pipeline.caches.friction_curves import case_friction
     from pipeline.stages.second_point import second_contact_model
 
     gx_b, gy_b = second_creepages(c, con)
     profiles = c["contact"].get("angle", "none") != "none"
     cos_a = math.cos(float(con["contact_angle"])) if profiles else 1.0
     cos_b = math.cos(float(con["b_contact_angle"])) if profiles else 1.0
-    second = SecondPoint(second_contact_model(con, case_friction(c)), np.asarray(gr["b_wheel_phi"], float),
+    second = SecondPoint(second_contact_model(con, friction), np.asarray(gr["b_wheel_phi"], float),
                          float(con["b_separation"]), gamma_x=gx_b, gamma_y=gy_b, cos_a=cos_a, cos_b=cos_b)
     return second, tuple(gr[f"rail_kernel_{k}"] for k in ("aa", "ab", "ba", "bb"))
 
 
-def run_two_point(c: dict, con, gr, cm, wheel, store_every: int = 10):
-    """(TwoPointResult, simulate.npz arrays) of a two-point case."""
+def run_two_point(rc, con, gr, cm, wheel, store_every: int = 10):
+    """(TwoPointResult, simulate.npz arrays) of a two-point case (``rc``: its ResolvedCase)."""
     from solvers.timeloop.two_point_driver import simulate_two
 
-    second, blocks = second_point(c, con, gr)
+    from pipeline.config.case import loop_arguments
+
+    second, blocks = second_point(rc.case, con, gr, rc.friction)
     gx_b, gy_b = second.gamma_x, second.gamma_y
-    res = simulate_two(wheel, blocks, cm, second, dt=c["time"]["dt"], v=c["kinematics"]["speed"],
-                       gamma_y=c["kinematics"]["gamma_y"], gamma_x=c["kinematics"]["gamma_x"],
-                       preload=c["loading"]["preload"], duration=c["time"]["duration"], store_every=store_every)
+    res = simulate_two(wheel, blocks, cm, second, **loop_arguments(rc, con).two_point(store_every=store_every))
     m = res.measures()
     a, b = res.a, res.b
     arrays = {"t": a.t, "F": a.F, "slip": a.slip, "state": a.state, "t_final": a.t_final, "F_final": a.F_final,
@@ -80,7 +80,9 @@ def simulate_two_point_case(case: str, c: dict, con, gr, cm, wheel, cfg: dict, p
 
     t0 = time.perf_counter() if t0 is None else t0
 
-    res, arrays = run_two_point(c, con, gr, cm, wheel)
+    from pipeline.config.case import resolve_case
+
+    res, arrays = run_two_point(resolve_case(case), con, gr, cm, wheel)
     if "contact_angle_wheel" in gr:
         arrays["contact_angle_wheel"] = np.float64(gr["contact_angle_wheel"])
     out = paths.case_dir(case)
@@ -96,12 +98,14 @@ def simulate_two_point_case(case: str, c: dict, con, gr, cm, wheel, cfg: dict, p
     return arrays
 
 
-def two_point_roots(c: dict, con, gr, wheel, cm) -> list:
-    """The two-point screen's wheel roots of a case (``solvers.stability.two_point``)."""
+def two_point_roots(rc, con, gr, wheel, cm) -> list:
+    """The two-point screen's wheel roots of a case (``rc``: its ResolvedCase; ``solvers.stability.two_point``)."""
     from solvers.stability.two_point import linearise_two, wheel_roots
 
-    second, blocks = second_point(c, con, gr)
-    lm = linearise_two(wheel, blocks, cm, second, dt=c["time"]["dt"], v=c["kinematics"]["speed"],
-                       gamma_y=c["kinematics"]["gamma_y"], gamma_x=c["kinematics"]["gamma_x"],
-                       preload=c["loading"]["preload"])
+    from pipeline.config.case import loop_arguments
+
+    second, blocks = second_point(rc.case, con, gr, rc.friction)
+    args = loop_arguments(rc, con).two_point()
+    args.pop("duration")
+    lm = linearise_two(wheel, blocks, cm, second, **args)
     return wheel_roots(lm)

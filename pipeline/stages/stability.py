@@ -28,23 +28,21 @@ def case_linear_model(case: str, mu: float | None = None, gamma_y: float | None 
     from solvers.timeloop.interaction import contact_model
     from solvers.stability.screen import linearise
 
-    from pipeline.stages.simulate import case_arrays, case_preload
+    from pipeline.config.case import loop_arguments, resolve_case
+    from pipeline.stages.simulate import case_arrays
 
     c, _, con, gr, wheel = case_arrays(case)
+    rc = resolve_case(case)
     modes, _ = artifacts.load_npz(paths.wheel_dir(c["wheel"]) / "modes.npz", "wheel-modes")
     labels = np.array([f"({n},{m},{k})" for n, m, k in zip(modes["n"], modes["m"], modes["cls"])])
     if mu is None:
-        from pipeline.caches.friction_curves import case_friction
-
-        mu = case_friction(c, case)
+        mu = rc.friction
     else:
         from pipeline.caches.friction_curves import with_curves
 
         con = with_curves(case, con, [mu])
-    gamma_y = c["kinematics"]["gamma_y"] if gamma_y is None else gamma_y
-    lm = linearise(wheel, gr["rail_kernel"], contact_model(con, mu), dt=c["time"]["dt"],
-                   v=c["kinematics"]["speed"], gamma_y=gamma_y, preload=case_preload(c, con),
-                   gamma_x=c["kinematics"]["gamma_x"], spin=c["kinematics"].get("spin", 0.0))
+    args = loop_arguments(rc, con).linearise(**({} if gamma_y is None else {"gamma_y": gamma_y}))
+    lm = linearise(wheel, gr["rail_kernel"], contact_model(con, mu), **args)
     return c, lm, labels, np.asarray(gr["wheel_f"], float)
 
 
@@ -90,9 +88,10 @@ def case_two_point_roots(case: str) -> list:
     """The two-point screen's wheel roots of a case from its artifacts (``simulate_two_point.two_point_roots``)."""
     from solvers.timeloop.interaction import contact_model
 
-    from pipeline.caches.friction_curves import case_friction
+    from pipeline.config.case import resolve_case
     from pipeline.stages.simulate import case_arrays
     from pipeline.stages.simulate_two_point import two_point_roots
 
     c, _, con, gr, wheel = case_arrays(case)
-    return two_point_roots(c, con, gr, wheel, contact_model(con, case_friction(c, case)))
+    rc = resolve_case(case)
+    return two_point_roots(rc, con, gr, wheel, contact_model(con, rc.friction))

@@ -236,10 +236,15 @@ def curve_inputs(path: Path) -> tuple[str, str]:
             raise SystemExit(f"{p}: cannot read it ({type(e).__name__}: {e})") from e
 
     data = read(path)
-    vehicle = _named(path, "vehicle", data, "geometry/vehicles", "vehicle")
-    if not vehicle:
-        raise SystemExit(f"{path}: vehicle: required (a vehicle file geometry/vehicles/<vehicle>.toml)")
-    vpath = Path("geometry/vehicles") / f"{vehicle}.toml"
+    vehicle = str(data.get("vehicle") or "")
+    beside = path.parent / f"{vehicle}.toml"            # a user's vehicle beside the curve file comes first
+    if vehicle and beside.is_file() and beside.resolve() != path.resolve():
+        vpath = beside
+    else:
+        vehicle = _named(path, "vehicle", data, "geometry/vehicles", "vehicle")
+        if not vehicle:
+            raise SystemExit(f"{path}: vehicle: required (a vehicle file beside it or geometry/vehicles/<vehicle>.toml)")
+        vpath = Path("geometry/vehicles") / f"{vehicle}.toml"
     v = read(ROOT / vpath)
     if v.get("name") != vehicle:
         raise SystemExit(f"{vpath}: name = {v.get('name')!r}: expected the file's name {vehicle!r} (a vehicle is "

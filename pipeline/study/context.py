@@ -15,6 +15,7 @@ import numpy as np
 
 from pipeline.store import artifacts, paths
 from pipeline.store.code_hash import code_key
+from pipeline.config.case import LoopArguments, loop_arguments, resolve_case
 from pipeline.config.loader import config_hash
 
 # the functions that compute a study's rows, and the context they run in (its objects' methods run in the
@@ -31,25 +32,30 @@ def code_hash() -> str:
 
 @dataclass(frozen=True)
 class CaseContext:
-    """One contact position's data for the workers (picklable; SI units)."""
+    """One contact position's data for the workers (picklable; SI units).  ``loop``: the case's time-loop
+    arguments (``pipeline.config.case.loop_arguments``), read through dt, v, preload, gamma_x, gamma_y,
+    spin, tangential, normal."""
     case: str
     inputs: str
     dy_wr: float
-    dt: float
-    v: float
-    preload: float
-    gamma_x: float
-    gamma_y: float
+    loop: LoopArguments
     mu: float
-    tangential: str
-    normal: str
     contact: dict
     wheel: dict            # f, mass, zeta, phi (modes, 2), n, m, cls, kind
     rail_kernel: np.ndarray
     radiation: Any = None  # pipeline.stages.radiate.load_radiation_model(case), or None (not requested)
     radiation_note: str = ""
     extra: dict = field(default_factory=dict)
-    friction: Any = None   # the case's resolved friction (pipeline.caches.friction_curves.Friction); mu: its coefficient
+    friction: Any = None   # the case's resolved FrictionLaw (pipeline.config.nouns); mu: its coefficient
+
+    dt = property(lambda self: self.loop.dt)                  # s
+    v = property(lambda self: self.loop.v)                    # m/s
+    preload = property(lambda self: self.loop.preload)        # N, static normal force
+    gamma_x = property(lambda self: self.loop.gamma_x)
+    gamma_y = property(lambda self: self.loop.gamma_y)
+    spin = property(lambda self: self.loop.spin)              # 1/m
+    tangential = property(lambda self: self.loop.tangential)
+    normal = property(lambda self: self.loop.normal)
 
     @property
     def flexible(self) -> np.ndarray:
@@ -68,7 +74,7 @@ def load_context(case: str, *, radiation: bool = True, zeta_overrides: dict | No
     the friction coefficients the study runs besides the case's own; their curves are built on the
     case's contact (``pipeline.caches.friction_curves.with_curves``, cached by value)."""
     from pipeline.stages.contact import contact_inputs
-    from pipeline.caches.friction_curves import case_friction, with_curves
+    from pipeline.caches.friction_curves import with_curves
     from pipeline.stages.greens import greens_inputs
 
     c, _, _, ccfg = contact_inputs(case)
@@ -89,9 +95,7 @@ def load_context(case: str, *, radiation: bool = True, zeta_overrides: dict | No
     inputs = config_hash({"contact": cprov["config_hash"], "greens": gprov["config_hash"],
                          "code": code_hash(), "radiation": model is not None,
                          "zeta_overrides": {str(k): float(v) for k, v in (zeta_overrides or {}).items()}})
-    return CaseContext(case=case, inputs=inputs, dy_wr=c["contact"]["dy_wr"], dt=c["time"]["dt"],
-                       v=c["kinematics"]["speed"], preload=c["loading"]["preload"],
-                       gamma_x=c["kinematics"]["gamma_x"], gamma_y=c["kinematics"]["gamma_y"],
-                       mu=case_friction(c, case).mu, friction=case_friction(c, case), tangential=c["contact"]["model"], normal=c["contact"]["normal"],
-                       contact=con, wheel=wheel, rail_kernel=gr["rail_kernel"], radiation=model,
-                       radiation_note=note)
+    rc = resolve_case(case)
+    return CaseContext(case=case, inputs=inputs, dy_wr=c["contact"]["dy_wr"], loop=loop_arguments(rc, con),
+                       mu=rc.friction.mu, friction=rc.friction, contact=con, wheel=wheel,
+                       rail_kernel=gr["rail_kernel"], radiation=model, radiation_note=note)

@@ -9,8 +9,8 @@ Outputs in build/studies/<line>/: ``table.csv`` (as run), ``line.csv`` (the CSV'
 penalties; a value that does not exist, a band without sound (-inf dB) or a quiet curve's frequency and
 levels (nan), is an empty cell), ``level_radius.png``, ``chainage.png``, ``lw_railway.csv`` (NoiseModelling's LW_RAILWAY
 rows of the squealing curves) with ``lw_railway_sections.csv``, ``line.md`` (the verdict first) and
-``summary.md`` (the same, for the report), ``curves/`` (a curve file per row); each curve's wheel
-cases and verdict.csv in build/curves/<curve>/.
+``summary.md`` (the same, for the report), ``curves/`` (a curve file per row, a record: the rows' Curves
+go to the workers in memory); each curve's wheel cases and verdict.csv in build/curves/<curve>/.
 """
 from __future__ import annotations
 
@@ -19,7 +19,7 @@ from pathlib import Path
 
 from pipeline.store import paths
 from pipeline.config.loader import config_hash
-from pipeline.study.line_input import LineRow, read_rows, write_curves
+from pipeline.study.line_input import LineRow, line_curves, read_rows
 from pipeline.study.line_worker import LineContext, LineTask, band_columns
 from pipeline.study.results_table import ResultsTable
 from pipeline.study.runner import Task, pending, run_tasks
@@ -46,25 +46,20 @@ def selected(spec: dict, quick: bool) -> list[LineRow]:
     return rows[: spec["quick"]["rows"]] if quick else rows
 
 
-def inputs_hash(spec: dict, curve_text: str, vehicle: str) -> str:
+def inputs_hash(spec: dict, curve_text: str, curve) -> str:
     """What a row's result depends on: its curve file, the vehicle, wheel and rail files, the code."""
     from pipeline.store.code_hash import code_key
-    from pipeline.curve.curving import vehicle_file
 
-    v = vehicle_file(vehicle)
-    import tomllib
-
-    wheel = tomllib.loads(v.read_text()).get("wheel", "")
-    files = [v, paths.wheel_file(wheel), paths.rail_file(tomllib.loads(curve_text).get("rail", "bv50"))]
+    files = [curve.vehicle.source, paths.wheel_file(curve.wheel), paths.rail_file(curve.rail)]
     return config_hash({"curve": curve_text, "files": [f.read_text() if f.exists() else "" for f in files],
                         "code": code_key(*ROW_FUNCTIONS, ignore_docs=True), "what_ifs": spec["what_ifs"],
                         "figures": spec["wheel_figures"]})
 
 
 def tasks_of(spec: dict, rows: list[LineRow], folder: Path) -> list[Task]:
-    names = write_curves(spec, rows, folder)
-    return [Task(row.key, inputs_hash(spec, (folder / f"{names[row.key]}.toml").read_text(), row.vehicle), "line",
-                 LineTask(names[row.key], tuple(row_inputs(row).items()))) for row in rows]
+    curves = line_curves(spec, rows, folder)
+    return [Task(row.key, inputs_hash(spec, curves[row.key][1], curves[row.key][0]), "line",
+                 LineTask(curves[row.key][0], tuple(row_inputs(row).items()))) for row in rows]
 
 
 def row_inputs(row: LineRow) -> dict:
@@ -88,7 +83,7 @@ def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool 
 
         dask = client.get()
         dask.run(prepare_worker)
-        r = run_tasks(tasks, line_case, table, dask, {"line": LineContext(str(folder), spec["what_ifs"], spec["wheel_figures"])},
+        r = run_tasks(tasks, line_case, table, dask, {"line": LineContext(spec["what_ifs"], spec["wheel_figures"])},
                       desc=spec["name"], progress=progress)
         stats |= {"run_wall_s": round(r.wall, 3), "dask_workers": r.workers}
     write_outputs(spec, src, out, quick, rows, [table.rows.get(t.key) for t in tasks])

@@ -1,7 +1,8 @@
 """The line study's input: its CSV of curves, validated like every input, and a curve file per row.
 
-The CSV (``curves = "<file>.csv"`` of the study file, beside it in pipeline/studies/): lines starting
-with ``#`` are comments; the header names the columns (any order, each once):
+The CSV (``curves = "<file>.csv"`` of the study file: a path relative to the study file's folder,
+pipeline/studies/, or an absolute one, anywhere): lines starting with ``#`` are comments; the header
+names the columns (any order, each once):
 
 | column | unit | allowed | meaning |
 |---|---|---|---|
@@ -11,15 +12,17 @@ with ``#`` are comments; the header names the columns (any order, each once):
 | ``cant_mm`` | mm | as ``cant_mm`` | superelevation |
 | ``length_m`` | m | 1 .. 20000 | curve length (the chainage plot) |
 | ``speed_kmh`` | km/h | as ``speed_kmh`` | the vehicle's speed in the curve |
-| ``vehicle`` | - | a file geometry/vehicles/<vehicle>.toml | the vehicle |
+| ``vehicle`` | - | a file <vehicle>.toml beside the CSV, or geometry/vehicles/<vehicle>.toml | the vehicle |
 | ``friction`` | - | ``dry``, ``wet`` (the study file's ``[friction] dry_mu``, ``wet_mu``) or a Coulomb coefficient 0 < mu <= 1 | the friction condition |
 
 A row is one curve, vehicle and friction condition (the same ``id`` may appear once per vehicle and
 condition).  Every problem of every row is one line naming the file, the line, the column, the value
 and what is allowed, all reported together before any work (``make check STUDY=<line>``).
 
-Each row becomes a curve file (the study file's ``base_curve`` with the row's vehicle, radius, cant,
-speed and friction coefficient; validated by the curve schema) in ``build/studies/<line>/curves/``.
+Each row becomes a ``Curve`` in memory (``line_curves``: the study file's ``base_curve`` -- a shipped
+name, or a curve file's path relative to the study file's folder -- with the row's vehicle, radius,
+cant, speed and friction coefficient; validated by the curve schema), sent to the row's worker, and
+its curve file is written as a record in ``build/studies/<line>/curves/``.
 """
 from __future__ import annotations
 
@@ -35,6 +38,7 @@ import tomli_w
 from pipeline.store import paths
 from pipeline.config.loader import ConfigError, Field, validate
 from pipeline.config.curve_schemas import CURVE
+from pipeline.config.nouns import Curve
 
 COLUMNS = ("id", "chainage_m", "radius_m", "cant_mm", "length_m", "speed_kmh", "vehicle", "friction")
 NUMERIC = {
@@ -50,7 +54,7 @@ CONDITIONS = ("dry", "wet")
 ROW_SCHEMA = {
     "id": Field(str, doc="the curve's name on the line; one row per id, vehicle and friction condition"),
     **NUMERIC,
-    "vehicle": Field(str, doc="geometry/vehicles/<vehicle>.toml"),
+    "vehicle": Field(str, doc="<vehicle>.toml beside the CSV, else geometry/vehicles/<vehicle>.toml"),
     "friction": Field(str, doc="'dry' or 'wet' (the study file's [friction] dry_mu, wet_mu) or a Coulomb "
                                "coefficient 0 < mu <= 1"),
 }
@@ -88,12 +92,21 @@ def _range_ok(f: Field, x: float) -> bool:
 
 
 def curves_file(spec: dict) -> Path:
-    return paths.studies() / spec["curves"]
+    """The line's CSV: ``curves`` relative to the study folder, or absolute."""
+    return paths.studies() / Path(spec["curves"]).expanduser()
+
+
+def base_curve_file(spec: dict) -> Path:
+    """The base curve: a shipped name, or a path relative to the study folder (or absolute)."""
+    from pipeline.config.curve_inputs import curve_path, is_path
+
+    base = spec["base_curve"]
+    return paths.studies() / Path(base).expanduser() if is_path(base) else curve_path(base)
 
 
 def read_rows(spec: dict, path: Path | None = None) -> list[LineRow]:
     """The validated rows of the study's CSV (module notes); a ConfigError lists every problem."""
-    from pipeline.curve.curving import available_vehicles
+    from pipeline.config.curve_inputs import available_vehicles
 
     path = Path(path or curves_file(spec))
     if not path.exists():
@@ -112,7 +125,7 @@ def read_rows(spec: dict, path: Path | None = None) -> list[LineRow]:
         raise ConfigError(str(path), [(f"line {head_no}, header", head, "the columns " + ", ".join(COLUMNS) +
                                        " once each (units in the names: chainage_m, radius_m, cant_mm, length_m, "
                                        "speed_kmh)")])
-    vehicles = available_vehicles()
+    vehicles = available_vehicles(path.parent)            # beside the CSV, then geometry/vehicles/
     mus = {"dry": spec["friction"]["dry_mu"], "wet": spec["friction"]["wet_mu"]}
     seen = {}
     for no, t in lines[1:]:
@@ -136,7 +149,8 @@ def read_rows(spec: dict, path: Path | None = None) -> list[LineRow]:
             problems.append((f"{where}, id", r["id"], "a non-empty name"))
             ok = False
         if r["vehicle"] not in vehicles:
-            problems.append((f"{where}, vehicle", r["vehicle"], f"one of {vehicles} (geometry/vehicles/)"))
+            problems.append((f"{where}, vehicle", r["vehicle"], f"one of {vehicles} (beside the CSV or in "
+                                                                "geometry/vehicles/)"))
             ok = False
         cond = r["friction"].lower()
         if cond in mus:
@@ -178,10 +192,11 @@ def problems_error(path, problems) -> ConfigError:
 def curve_data(spec: dict, row: LineRow, name: str) -> dict:
     """The curve file of ``row`` (the base curve's keys with the row's; validated: a ConfigError names
     the CSV line)."""
-    base = paths.ROOT / "pipeline" / "curves" / f"{spec['base_curve']}.toml"
+    base = base_curve_file(spec)
     if not base.exists():
         raise ConfigError(str(paths.study_file(spec["name"])), [("base_curve", spec["base_curve"],
-                                                                 "a curve of pipeline/curves/")])
+                                                                 "a curve of pipeline/curves/ or a curve file's "
+                                                                 "path (no such file)")])
     data = tomllib.loads(base.read_text())
     data.update(name=name, vehicle=row.vehicle, radius_m=row.radius_m, cant_mm=row.cant_mm, speed_kmh=row.speed_kmh,
                 description=f"line {spec['name']}, curve {row.id} at {row.chainage_m:g} m ({row.length_m:g} m long), "
@@ -194,21 +209,28 @@ def curve_data(spec: dict, row: LineRow, name: str) -> dict:
     return data
 
 
-def write_curves(spec: dict, rows: list[LineRow], folder: Path) -> dict[str, str]:
-    """Write each row's curve file into ``folder`` (unchanged files untouched); {row key: curve name}."""
+def line_curves(spec: dict, rows: list[LineRow], folder: Path) -> dict[str, tuple[Curve, str]]:
+    """{row key: (its Curve, its curve file's text)}: each row's curve built in memory (module notes),
+    its vehicle looked up beside the CSV first, and its curve file written into ``folder`` as a record
+    (unchanged files untouched)."""
+    from pipeline.config.curve_inputs import curve_of, read_vehicle
     from pipeline.store.atomic import save_text
 
     folder.mkdir(parents=True, exist_ok=True)
-    names = {}
+    beside = curves_file(spec).parent
+    vehicles, out = {}, {}
     for row in rows:
         name = row.curve_name(spec["name"])
+        data = curve_data(spec, row, name)
         text = (f"# written by the line study {spec['name']} (pipeline/study/line_input.py) from "
-                f"{spec['curves']} line {row.line}\n" + tomli_w.dumps(curve_data(spec, row, name)))
+                f"{spec['curves']} line {row.line}\n" + tomli_w.dumps(data))
         path = folder / f"{name}.toml"
         if not (path.exists() and path.read_text() == text):
             save_text(text, path)
-        names[row.key] = name
-    return names
+        if row.vehicle not in vehicles:
+            vehicles[row.vehicle] = read_vehicle(row.vehicle, beside, asked_by=(str(curves_file(spec)), "vehicle"))
+        out[row.key] = (curve_of(validate(data, CURVE, str(path)), path, name, vehicles[row.vehicle]), text)
+    return out
 
 
 def check(spec: dict) -> list[LineRow]:

@@ -14,22 +14,24 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from pipeline.config.nouns import Curve
+
 NAN = float("nan")
 
 
 @dataclass(frozen=True)
 class LineContext:
-    """What every row of a line runs with (scattered once to each worker): the folder of the line's
-    curve files, whether the mitigation what-ifs run and the squealing wheels' stages draw figures."""
-    curves: str
+    """What every row of a line runs with (scattered once to each worker): whether the mitigation
+    what-ifs run and the squealing wheels' stages draw figures."""
     what_ifs: bool
     figures: bool = False
 
 
 @dataclass(frozen=True)
 class LineTask:
-    """One row of the line: its curve file's name and the CSV row's values ((column, value) pairs)."""
-    curve: str
+    """One row of the line: its Curve (built on the client, ``line_input.line_curves``) and the CSV
+    row's values ((column, value) pairs)."""
+    curve: Curve
     row: tuple
 
 
@@ -111,9 +113,8 @@ def line_case(ctx: LineContext, t: LineTask) -> dict:
 
     from pipeline.config.loader import ConfigError
 
-    os.environ["SQUEAL_CURVE_DIR"] = ctx.curves        # the line's curve files (single-threaded workers)
     try:
         res = run_screen_first(t.curve, what_ifs=ctx.what_ifs, figures=ctx.figures)
     except ConfigError as e:                           # no steady curving, or a wheel outside a case's range
-        return dict(t.row) | summary_row(t.curve, []) | {"note": " ".join(str(e).split())}
-    return dict(t.row) | summary_row(t.curve, res["rows"]) | {"note": ""}
+        return dict(t.row) | summary_row(t.curve.name, []) | {"note": " ".join(str(e).split())}
+    return dict(t.row) | summary_row(t.curve.name, res["rows"]) | {"note": ""}

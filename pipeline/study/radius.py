@@ -5,10 +5,11 @@ and the table of where squeal starts, which wheel squeals, its frequency and L_p
 
     .venv/bin/python -m pipeline.study.radius [--base r150] [--radii 50,75,...] [--no-docs] [--rerun]
 
-Each radius is a curve file written from the base curve (``--base``, a shipped curve of the metro
-vehicle) with its radius, speed and cant replaced, under ``build/studies/radius/curves/`` (the
-curve folder while it runs, ``SQUEAL_CURVE_DIR``); its verdict lands in ``build/curves/<name>/``
-and is reused while it is newer than its curve file (``--rerun`` runs it again).
+Each radius is a Curve made from the base curve (``--base``, a shipped curve of the metro vehicle or
+a curve file's path) with its radius, speed and cant replaced (``pipeline.curve.curvefiles``), its
+curve file written as a record under ``build/studies/radius/curves/``; the Curve goes to the curve
+stage in memory.  Its verdict lands in ``build/curves/<name>/`` and is reused while it is newer
+than its curve file (``--rerun`` runs it again).
 
 Speed and cant (a stated design rule, not a measured one): the speed is the metro's line speed
 ``V_MAX`` or, lower, the speed at which the lateral acceleration in the track plane reaches
@@ -20,7 +21,6 @@ from __future__ import annotations
 import argparse
 import logging
 import math
-import os
 import sys
 from pathlib import Path
 
@@ -110,26 +110,19 @@ def curve_verdict(base: str, folder: Path, radius: float, speed_kmh: float | Non
     cant: the design rule's), from build/curves/<name>/verdict.csv when it is newer than its curve
     file (``reuse``), else by running the curve stage.  {'name', 'R', 'V', 'cant', 'rows'}."""
     from pipeline.store import paths
-    from pipeline.curve.curvefiles import write_radius_curve
+    from pipeline.config.curve_inputs import curve_name
+    from pipeline.curve.curvefiles import radius_curve
     from pipeline.curve.stage import read_verdict, run_curve
 
     V, cant = design(radius)
     V = V if speed_kmh is None else float(speed_kmh)
-    name = write_radius_curve(base, folder, radius, V, cant, name=f"{base}-R{radius:g}-V{V:g}")
-    csv = paths.curve_dir(name) / "verdict.csv"
-    old = os.environ.get("SQUEAL_CURVE_DIR")
-    os.environ["SQUEAL_CURVE_DIR"] = str(folder)
-    try:
-        if reuse and csv.exists() and csv.stat().st_mtime > (Path(folder) / f"{name}.toml").stat().st_mtime:
-            rows = read_verdict(csv)
-        else:
-            rows = run_curve(name)["rows"]
-    finally:
-        if old is None:
-            os.environ.pop("SQUEAL_CURVE_DIR", None)
-        else:
-            os.environ["SQUEAL_CURVE_DIR"] = old
-    return {"name": name, "R": radius, "V": V, "cant": cant, "rows": rows}
+    curve = radius_curve(base, folder, radius, V, cant, name=f"{curve_name(base)}-R{radius:g}-V{V:g}")
+    csv = paths.curve_dir(curve.name) / "verdict.csv"
+    if reuse and csv.exists() and csv.stat().st_mtime > curve.source.stat().st_mtime:
+        rows = read_verdict(csv)
+    else:
+        rows = run_curve(curve)["rows"]
+    return {"name": curve.name, "R": radius, "V": V, "cant": cant, "rows": rows}
 
 
 def main(argv=None) -> int:

@@ -106,11 +106,14 @@ LINE = {
     "name": COMMON["name"],
     "kind": COMMON["kind"],
     "description": COMMON["description"],
-    "curves": Field(str, doc="the line's curves: a CSV file beside the study file (pipeline/studies/<curves>), one row "
-                             "per curve, vehicle and friction condition, columns id, chainage_m, radius_m, cant_mm, "
-                             "length_m, speed_kmh, vehicle, friction (pipeline/study/line_input.py)"),
-    "base_curve": Field(str, default="r150", doc="pipeline/curves/<base_curve>.toml: the rail, gauge, gauge widening "
-                                                 "and traction of every curve of the line"),
+    "curves": Field(str, doc="the line's curves: a CSV file, its path relative to the study file's folder "
+                             "(pipeline/studies/<curves>) or absolute (anywhere), one row per curve, vehicle and "
+                             "friction condition, columns id, chainage_m, radius_m, cant_mm, length_m, speed_kmh, "
+                             "vehicle (a vehicle file beside the CSV, else geometry/vehicles/), friction "
+                             "(pipeline/study/line_input.py)"),
+    "base_curve": Field(str, default="r150", doc="pipeline/curves/<base_curve>.toml, or a curve file's path (relative "
+                                                 "to the study file's folder): the rail, gauge, gauge widening and "
+                                                 "traction of every curve of the line"),
     "friction": {
         "dry_mu": Field(float, min=0.05, max=1.0, default=0.4,
                         doc="Coulomb coefficient of the CSV's friction condition 'dry'"),

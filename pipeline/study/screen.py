@@ -48,15 +48,15 @@ def screen_rows(case: str, gammas, mus) -> list[dict]:
     from pipeline.stages.stability import case_linear_model
 
     c, lm0, labels, _ = case_linear_model(case)
-    from pipeline.caches.friction_curves import case_friction, with_curves
+    from pipeline.caches.friction_curves import with_curves
+    from pipeline.config.case import resolve_case
 
     con, _ = artifacts.load_npz(paths.case_dir(case) / "contact.npz", "contact")
     con = with_curves(case, con, [float(m) for m in mus])
     lab = lambda r: "track" if r.mode < 0 else str(labels[r.mode])                      # noqa: E731
     rows = []
-    f = case_friction(c, case)
     for mu, gy, roots in grid_roots(lm0, con, c["kinematics"]["speed"], gammas, mus,
-                                    f.mu if f.name == "coulomb" else None):
+                                    resolve_case(case).friction.coulomb_mu):
         lf = [r for r in roots if r.mode < 0]
         na = [r for r in roots if r.mode >= 0 and lab(r).endswith(",0,a)")]
         rows.append({"case": case, "dy_wr": c["contact"]["dy_wr"], "gamma_y": gy, "mu": mu,

@@ -23,30 +23,20 @@ FRAGMENT = "94_line.md"
 
 def screen_against_time_loop(radii, base: str = "r150") -> list[dict]:
     """Per wheel of each radius: the screen's verdict (a growing wheel-mode pole) and the time loop's."""
-    import os
-
     from pipeline.store import paths
-    from pipeline.curve.curvefiles import write_radius_curve
+    from pipeline.curve.curvefiles import radius_curve
     from pipeline.study.radius import design
     from pipeline.curve.stage import run_curve
 
     folder = paths.build() / "studies" / "radius" / "curves"
     out = []
-    old = os.environ.get("SQUEAL_CURVE_DIR")
-    os.environ["SQUEAL_CURVE_DIR"] = str(folder)
-    try:
-        for R in radii:
-            V, cant = design(R)
-            name = write_radius_curve(base, folder, R, V, cant, name=f"{base}-R{R:g}-V{V:g}-nowhatif")
-            for r in run_curve(name, progress_bar=False, what_ifs=False)["rows"]:
-                out.append({"R": R, "V": V, "wheel": r["wheel"], "unstable": math.isfinite(r["screen_sigma"]),
-                            "squeals": bool(r["squeals"]), "screen": r["screen_mode"], "L_F2": r["L_F2"],
-                            "gamma_y": r["gamma_y"]})
-    finally:
-        if old is None:
-            os.environ.pop("SQUEAL_CURVE_DIR", None)
-        else:
-            os.environ["SQUEAL_CURVE_DIR"] = old
+    for R in radii:
+        V, cant = design(R)
+        curve = radius_curve(base, folder, R, V, cant, name=f"{base}-R{R:g}-V{V:g}-nowhatif")
+        for r in run_curve(curve, progress_bar=False, what_ifs=False)["rows"]:
+            out.append({"R": R, "V": V, "wheel": r["wheel"], "unstable": math.isfinite(r["screen_sigma"]),
+                        "squeals": bool(r["squeals"]), "screen": r["screen_mode"], "L_F2": r["L_F2"],
+                        "gamma_y": r["gamma_y"]})
     return out
 
 

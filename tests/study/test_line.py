@@ -131,3 +131,34 @@ def test_three_curve_line(tmp_path):
     assert r.returncode == 0, r.stderr[-3000:]
     runs = [json.loads(x) for x in (out / "runs.jsonl").read_text().splitlines()]
     assert runs[-1]["done_before"] == 2 and runs[-1]["submitted"] == 1
+
+
+def test_csv_and_vehicle_outside_the_repository(tmp_path, monkeypatch):
+    """A line's CSV anywhere (``curves`` an absolute path) and a vehicle beside it that geometry/vehicles/
+    does not have: the rows validate, each becomes a Curve in memory with that vehicle (the record of its
+    curve file written), whose steady curving is the shipped vehicle's when the data are the same."""
+    from pipeline.config.curve_inputs import read_curve
+    from pipeline.curve.curving import solve_curve
+    from pipeline.study.line_input import line_curves, read_rows
+
+    mine = tmp_path / "project"
+    mine.mkdir()
+    (mine / "my_metro.toml").write_text((ROOT / "geometry/vehicles/c20_metro.toml").read_text()
+                                        .replace('name = "c20_metro"', 'name = "my_metro"'))
+    (mine / "line.csv").write_text(HEAD + "A,0,300,0,100,50,my_metro,dry\nB,0,300,0,100,50,nobody,dry\n")
+    monkeypatch.setenv("SQUEAL_STUDY_DIR", str(tmp_path / "studies"))
+    spec = {"name": "mine", "curves": str(mine / "line.csv"), "base_curve": "r150",
+            "friction": {"dry_mu": 0.35, "wet_mu": 0.15}}
+    from pipeline.config.loader import ConfigError
+
+    with pytest.raises(ConfigError) as e:                        # 'nobody' is neither beside the CSV nor shipped
+        read_rows(spec)
+    assert "line 3, vehicle = 'nobody'" in str(e.value) and "my_metro" in str(e.value)
+    (mine / "line.csv").write_text(HEAD + "A,0,300,0,100,50,my_metro,dry\n")
+    rows = read_rows(spec)
+    curves = line_curves(spec, rows, tmp_path / "curves")
+    curve, text = curves[rows[0].key]
+    assert curve.vehicle.source == mine / "my_metro.toml" and curve.source.read_text() == text
+    ref = solve_curve(read_curve("r150", radius_m=300.0, cant_mm=0.0, speed_kmh=50.0))
+    got = solve_curve(curve)
+    assert [w.gamma_y for w in got.wheels] == [w.gamma_y for w in ref.wheels]

@@ -22,8 +22,7 @@ def test_bad_curve_file_is_one_line(tmp_path):
     text = (ROOT / "pipeline" / "curves" / "r150.toml").read_text().replace("radius_m = 150.0", "radius_m = -5.0")
     (tmp_path / "curves" / "bad.toml").write_text(text)
     build = tmp_path / "build"
-    r = run_cli("curve", "--curve", "bad", env={"SQUEAL_CURVE_DIR": str(tmp_path / "curves"),
-                                                "SQUEAL_BUILD_DIR": str(build)})
+    r = run_cli("curve", "--curve", str(tmp_path / "curves" / "bad.toml"), env={"SQUEAL_BUILD_DIR": str(build)})
     assert r.returncode == 2
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1, r.stderr

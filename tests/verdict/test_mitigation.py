@@ -90,7 +90,8 @@ def test_positive_creepage_screen_is_the_mirror_image(default_models):
     k[:, 1, 0] *= -1.0
     mirrored = CaseModels.__new__(CaseModels)
     mirrored.mus, mirrored.spin, mirrored.friction = base.mus, -base.spin, base.friction
-    mirrored.ctx = dataclasses.replace(base.ctx, gamma_y=-base.ctx.gamma_y, wheel=w, rail_kernel=k,
+    loop = dataclasses.replace(base.ctx.loop, gamma_y=-base.ctx.gamma_y)
+    mirrored.ctx = dataclasses.replace(base.ctx, loop=loop, wheel=w, rail_kernel=k,
                                        inputs=base.ctx.inputs + "-mirrored")
     a, b = base.simulate(0.35), mirrored.simulate(0.35)
     assert a["squeals"] and b["squeals"]

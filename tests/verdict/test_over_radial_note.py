@@ -15,13 +15,11 @@ from pipeline.config.check import over_radial_note
 def test_note_where_the_curving_angle_of_attack_is_negative(curve):
     from pipeline.curve.curving import solve_curve
     from pipeline.curve.cases import wheel_case
-    from pipeline.curve.operating import curve_info, wheel_points
 
     sol = solve_curve(curve)
-    info = curve_info(curve, sol)
     signs = set()
-    for p in wheel_points(sol):
-        c = wheel_case(info, p)                       # the case file the curve stage writes for the wheel
+    for p in sol.wheels:
+        c = wheel_case(sol.curve, p).case             # the case the curve stage hands to the stages for the wheel
         note = over_radial_note(c) or ""
         assert ("over-radial" in note) == (p.angle_of_attack < 0), (p.wheel, p.angle_of_attack, p.gamma_y, note)
         signs.add((p.wheel[-1], p.gamma_y > 0))

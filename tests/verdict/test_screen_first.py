@@ -50,13 +50,17 @@ def test_listed_point_kernel_is_build_kernels():
     _same(got, ref)
 
 
-def test_screen_first_equals_the_curve_stage():
+def test_screen_first_equals_the_curve_stage(monkeypatch):
     """r300 (the metro at 300 m, mu = 0.35): the curve stage screens and runs the time loop for all four
     wheels; screen first, the same screen numbers, and no wheel run in the time loop: the screen finds
     no growing pole at any of them (certified: solvers/stability/nyquist.py), and the curve stage's time
-    loop finds all four quiet."""
+    loop finds all four quiet.  Neither path reads a wheel's case file back
+    (its ResolvedCase is handed to the stages in memory)."""
+    import pipeline.config.case_profiles as P
     from pipeline.curve.screen_first import run_screen_first
     from pipeline.curve.stage import run_curve
+
+    monkeypatch.setattr(P, "case_contact", lambda name: pytest.fail(f"case file of {name} read back"))
 
     full = {r["wheel"]: r for r in run_curve("r300", progress_bar=False, what_ifs=False)["rows"]}
     first = {r["wheel"]: r for r in run_screen_first("r300", write=False)["rows"]}
@@ -87,36 +91,33 @@ def test_a1o_verdict_robust_to_the_kernels_last_digits():
     loop (SPEC 6) agrees: quiet."""
     import dataclasses
 
-    from pipeline.config.case import resolve_case
-    from pipeline.curve.cases import wheel_case, write_case
+    from pipeline.curve.cases import wheel_case
     from pipeline.curve.what_ifs import CaseModels
-    from pipeline.curve.operating import curve_info, wheel_points
     from pipeline.curve.screen_first import screen_context, time_loop_L_F2
     from pipeline.curve.stage import solve
     from solvers.stability.screen import linearise, screen
     from solvers.stability.nyquist import Contour, certify
 
     sol = solve("r300")
-    info = curve_info("r300", sol)
-    a1o = next(p for p in wheel_points(sol) if p.wheel == "a1o")
-    write_case(wheel_case(info, a1o))                  # this test's own case file (any test order)
-    ctx = screen_context("r300/a1o")
-    spin = float(resolve_case("r300/a1o").case["kinematics"].get("spin", 0.0))
+    a1o = next(p for p in sol.wheels if p.wheel == "a1o")
+    rc = wheel_case(sol.curve, a1o)                    # built in memory (any test order)
+    ctx = screen_context(rc)
+    spin = float(ctx.spin)
     g = np.asarray(ctx.rail_kernel, float)
     rng = np.random.default_rng(34)
     for k in (g, g * (1 + 1e-7), g * (1 - 1e-7), g * (1 + 1e-7 * rng.uniform(-1, 1, g.shape))):
-        models = CaseModels.of_context(dataclasses.replace(ctx, rail_kernel=k), spin, ctx.friction)
+        models = CaseModels.of_context(dataclasses.replace(ctx, rail_kernel=k))
         assert [r for r in models.roots(ctx.mu) if r.sigma > 0 and r.mode >= 0] == []
     # the certificate of the screen's linear model (a1o's gamma_y > 0: its mirror image, as CaseModels.roots)
     assert ctx.gamma_y > 0
-    w = CaseModels.of_context(ctx, spin, ctx.friction).wheel()
+    w = CaseModels.of_context(ctx).wheel()
     phi = np.array(w.phi, float)
     phi[:, 0] *= -1.0
     km = g.copy()
     km[:, 0, 1] *= -1.0
     km[:, 1, 0] *= -1.0
-    lm = linearise(w._replace(phi=phi), km, CaseModels.of_context(ctx, spin, ctx.friction).contact(ctx.mu),
+    lm = linearise(w._replace(phi=phi), km, CaseModels.of_context(ctx).contact(ctx.mu),
                    dt=ctx.dt, v=ctx.v, gamma_y=-ctx.gamma_y, preload=ctx.preload, gamma_x=ctx.gamma_x, spin=-spin)
     _, cert = certify(lm, screen(lm, certify=False), Contour(lm))
     assert cert.n_unstable == 0 and cert.resolved and cert.eps_kernel > 1e-4
-    assert time_loop_L_F2("r300/a1o", ctx) < 10.0
+    assert time_loop_L_F2(rc, ctx) < 10.0

@@ -43,8 +43,10 @@ def test_squealing_row_links_the_wav_that_exists(curve_wheel, monkeypatch):
     from pipeline.config.case import clear
     from pipeline.config.loader import load
     from pipeline.config.input_schemas import CASE
+    import dataclasses
+
+    from pipeline.config.curve_inputs import read_curve
     from pipeline.curve import stage
-    from pipeline.curve.operating import CurveInfo, WheelPoint
 
     clear()
     real_run = stage.run_stages
@@ -52,10 +54,9 @@ def test_squealing_row_links_the_wav_that_exists(curve_wheel, monkeypatch):
     monkeypatch.setattr(stage, "run_stages", lambda name, stages: real_run(name, [s for s in stages
                                                                             if s not in ("contact", "greens")]))
     c = load(paths.case_file("t/a1i"), CASE)
-    info = CurveInfo(name="t", radius=150.0, speed_kmh=50.0, cant=0.0, gauge=1.435, wheel="c20", rail="bv50",
-                     vehicle="c20_metro", friction=dict(c["friction"]), wheelbase=2.0, contact_spacing=1.5)
-    p = WheelPoint("a1i", c["contact"]["dy_wr"], 0.02, 0.0, c["kinematics"]["gamma_y"], 0.0, 0.0, 0.0, 0.0,
-                   c["loading"]["preload"], 1)
+    info = dataclasses.replace(read_curve("r150"), name="t")     # its wheel a1i is the case file t/a1i above
+    p = _point(wheel="a1i", dy_wr=c["contact"]["dy_wr"], angle_of_attack=0.02, gamma_y=c["kinematics"]["gamma_y"],
+               wheel_load=c["loading"]["preload"], normal_load=c["loading"]["preload"])
     row = stage.wheel_verdict(info, p, what_ifs=False)
     assert row["squeals"] and math.isfinite(row["L_pA"])
     wav = Path(row["wav"])
@@ -67,3 +68,16 @@ def test_squealing_row_links_the_wav_that_exists(curve_wheel, monkeypatch):
 
     md = verdict_markdown(info, [p], [row], wall=1.0)
     assert f"Listen: `{wav}`" in md
+
+
+def _point(**kw):
+    """A WheelOperatingPoint with the given fields, the others zero (profiles none): what the figure and the
+    verdict row read."""
+    import dataclasses
+
+    from pipeline.config.nouns import WheelOperatingPoint
+
+    base = {f.name: 0.0 for f in dataclasses.fields(WheelOperatingPoint)}
+    base |= {"axle": 1, "side": "inner", "contact_points": 1, "friction_law": "coulomb", "wheel_file": "c20",
+             "rail_file": "bv50", "wheel_profile": None, "rail_profile": None, "nadal": float("nan")}
+    return WheelOperatingPoint(**(base | kw))
