@@ -139,7 +139,7 @@ class FitProblem:
 
 def fit(problem: FitProblem, seed: int = 1, popsize: int = 20, maxiter: int = 300) -> dict:
     """Fitted wear parameters (dict by NAMES), objective and contact points."""
-    from scipy.optimize import differential_evolution, minimize
+    from scipy.optimize import differential_evolution, minimize  # lazy: brings in scipy
 
     de = differential_evolution(problem.objective, BOUNDS, seed=seed, popsize=popsize, maxiter=maxiter,
                                 tol=1e-10, polish=False)

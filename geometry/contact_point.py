@@ -74,7 +74,7 @@ class TrackRail:
     callable z_T(Y), with ``slope``, ``curvature`` and ``to_rail(Y)``."""
 
     def __init__(self, rail, inclination: float):
-        from scipy.interpolate import make_interp_spline
+        from scipy.interpolate import make_interp_spline  # lazy: brings in scipy
 
         self.rail, self.alpha = rail, float(np.arctan(inclination))
         ca, sa = np.cos(self.alpha), np.sin(self.alpha)
@@ -142,7 +142,7 @@ def rigid_contact(wheel, rail_t: TrackRail, shift: float) -> RigidContact:
     """Contact of ``wheel`` (Profile) on ``rail_t`` (TrackRail) with the
     wheel's rolling circle at track position ``shift`` (m).  Raises
     FlangeContact for flange contact or profiles that do not overlap."""
-    from scipy.optimize import minimize_scalar
+    from scipy.optimize import minimize_scalar  # lazy: brings in scipy
 
     y = wheel.y
     sep = _separation(wheel, rail_t, shift, y)

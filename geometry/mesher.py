@@ -18,7 +18,7 @@ def mesh_section(segments: list[Segment], path: str, order: int = 1, verbose: bo
     Returns {name: physical curve tag}.  The surface has physical tag 1.
     The caller is responsible for atomic placement (write to a temp path).
     """
-    import gmsh
+    import gmsh  # lazy: brings in gmsh
 
     gmsh.initialize()  # gmsh 4.8 has no isInitialized(): one session per call
     try:
@@ -84,9 +84,9 @@ def read_msh(path: str, gdim: int = 2):
 
     (dolfinx 0.5.2's gmshio.read_from_msh has a bug, so open the file in a
     Gmsh session and convert the model.)"""
-    import gmsh
-    from dolfinx.io import gmshio
-    from mpi4py import MPI
+    import gmsh  # lazy: brings in gmsh
+    from dolfinx.io import gmshio  # lazy: brings in dolfinx (and PETSc's signal handlers)
+    from mpi4py import MPI  # lazy: brings in mpi4py (and PETSc's signal handlers)
 
     gmsh.initialize()
     try:

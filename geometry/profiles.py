@@ -184,7 +184,7 @@ def check_points(y, z, source: str, lines=None, units: str = "mm") -> None:
 def _smoothing_spline(x, y, noise):
     """Cubic smoothing spline of (x, y) (mm) and its description: RMS residual
     = noise (bisection on log lam), noise 0 -> interpolating, None -> GCV."""
-    from scipy.interpolate import make_interp_spline, make_smoothing_spline
+    from scipy.interpolate import make_interp_spline, make_smoothing_spline  # lazy: brings in scipy
 
     if noise is not None and noise <= 0.0:
         return make_interp_spline(x, y, k=3), "interpolating cubic spline (noise_mm = 0)"

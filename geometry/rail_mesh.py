@@ -13,7 +13,7 @@ def mesh_rail(p: dict, path: str, verbose: bool = False) -> dict:
     (pad); physical curves as in CURVE_TAGS.  The two regions share the
     foot/pad interface lines (conforming mesh).  Returns CURVE_TAGS for the
     names present.  Calls check_rail first."""
-    import gmsh
+    import gmsh  # lazy: brings in gmsh
 
     check_rail(p)
     segs = rail_half_outline(p)

@@ -19,6 +19,8 @@ All functions are pure (parameters in, arrays out).
 from __future__ import annotations
 
 import numpy as np
+from geometry.rail import crown_arcs
+from geometry.wheel import tread_profile
 
 # --------------------------------------------------------------------------- S1002 (EN 13715)
 # section bounds (mm, from the tape circle, + toward the field side) and coefficients
@@ -67,8 +69,6 @@ def rail_head_curve(p: dict, ds: float = 5e-5, side_depth: float = 0.016) -> dic
     Returns {'s': arc length from the crown top (m, + field side), 'y', 'z'
     (m; z = height above the crown top, <= 0), 'n' (outward unit normals,
     (k, 2))}, sampled every ~ds of arc length."""
-    from geometry.rail import crown_arcs
-
     a = crown_arcs(p)
     H = p["section"]["height"]
     pts, nrm = [], []
@@ -118,8 +118,6 @@ def wheel_tread_points(p: dict) -> tuple[np.ndarray, np.ndarray]:
     """(y^W, r - r0) in m of a parametric wheel's running surface
     (``geometry.wheel.tread_profile``) from the flange top to the field face:
     the polyline vertices (arcs sampled on the arc), single-valued in y."""
-    from geometry.wheel import tread_profile
-
     pts = tread_profile(p)["points"]
     top = pts[np.argmax(pts[:, 1]):]
     keep = np.r_[True, np.diff(top[:, 0]) > 1e-7]

@@ -12,6 +12,16 @@ import sys
 
 from pipeline.stages import STAGES
 from pipeline.store.atomic import interrupted, watch_interrupts
+from pipeline.store import paths
+from pipeline.store.artifacts import ArtifactError
+from pipeline.config.loader import ConfigError
+from pipeline.numba_setup import skip_special
+from pipeline.curve.check import check_curve
+from pipeline.config.check import run_check
+from pipeline.curve.stage import run_curve
+from pipeline.study.screen import run_stability_map
+from pipeline.study.stage import run_study
+from pipeline.stages.listen import run_listen
 
 # the stages that run numba code (pipeline/numba_setup.py)
 NUMBA_STAGES = {name for name, st in STAGES.items() if st.numba}
@@ -66,9 +76,6 @@ def _main(argv=None) -> int:
     level = logging.WARNING if args.quiet else (logging.INFO if args.verbose < 2 else logging.DEBUG)
     logging.basicConfig(level=level, format="%(levelname)s %(name)s: %(message)s")
 
-    from pipeline.store import paths
-    from pipeline.store.artifacts import ArtifactError
-    from pipeline.config.loader import ConfigError
 
     try:
         paths.curve_wheel(args.case)  # a case file's name, or a curve's wheel <curve>/<wheel>
@@ -77,39 +84,25 @@ def _main(argv=None) -> int:
         return 2
 
     if args.stage in NUMBA_STAGES:
-        from pipeline.numba_setup import skip_special
-
         skip_special()
 
     try:
         if args.stage == "check" and args.curve:
-            from pipeline.curve.check import check_curve
-
             print("\n".join(check_curve(args.curve)))
         elif args.stage == "check":
-            from pipeline.config.check import run_check
-
             print("\n".join(run_check(args.case, args.wheel, args.rail)))
         elif args.stage == "curve":
-            from pipeline.curve.stage import run_curve
-
             if not args.curve:
                 raise ConfigError("--curve", detail="the curve stage needs --curve <name or path> (pipeline/curves/<name>.toml, "
                                                     "or a curve file anywhere)")
             res = run_curve(args.curve, progress_bar=not args.no_progress, what_ifs=not args.no_what_ifs)
             print(res["paths"]["md"])
         elif args.stage == "stability_map":
-            from pipeline.study.screen import run_stability_map
-
             print(run_stability_map(args.study, quick=args.quick))
         elif args.stage == "study":
-            from pipeline.study.stage import run_study
-
             print(run_study(args.study, quick=args.quick, scheduler=args.scheduler, workers=args.workers,
                             out=args.out, progress=not args.no_progress))
         elif args.stage == "listen":
-            from pipeline.stages.listen import run_listen
-
             run_listen(args.case, distance=args.distance, height=args.height, allow_silent=args.allow_silent)
         else:
             st = STAGES[args.stage]

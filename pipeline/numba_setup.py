@@ -9,6 +9,7 @@ greens) need not pay: its overloads are registered when it is imported, and the 
 uses them (solvers/timeloop/partitioned.py) imports it.
 """
 from __future__ import annotations
+import sys
 
 
 def skip_special() -> None:
@@ -16,9 +17,7 @@ def skip_special() -> None:
     overloads come with ``import rocket_fft``, done by the modules that use them) and so the
     scipy.special signatures and the import of rocket_fft where it is not used.  Call it before any
     numba code runs."""
-    import sys
-
-    from numba.core import entrypoints
+    from numba.core import entrypoints  # lazy: brings in numba
 
     entrypoints._already_initialized = True   # numba's init_all() then loads no entry point
     if "rocket_fft" in sys.modules:           # already imported: its entry point would be skipped anyway

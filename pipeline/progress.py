@@ -13,7 +13,7 @@ def progress(iterable: Iterable | None = None, *, enabled: bool = True, **kwargs
     """``tqdm(iterable, **kwargs)`` drawn only when ``enabled`` and stderr is a
     terminal (tqdm's ``disable=None``); usable as an iterator or a context
     manager with ``update()``, as tqdm."""
-    from tqdm import tqdm
+    from tqdm import tqdm  # lazy: brings in tqdm
 
     return tqdm(iterable, disable=None if enabled else True, dynamic_ncols=True, **kwargs)
 

@@ -31,6 +31,7 @@ the radiate stage writes them).
 from __future__ import annotations
 
 import numpy as np
+from postprocess.listening.listener import Bands, band_sums
 
 NM_BANDS_HZ = (50, 63, 80, 100, 125, 160, 200, 250, 315, 400, 500, 630, 800, 1000, 1250, 1600, 2000, 2500, 3150,
                4000, 5000, 6300, 8000, 10000)  # NoiseModelling's DEFAULT_FREQUENCIES_THIRD_OCTAVE
@@ -57,8 +58,6 @@ def third_octaves(f_lo: float = 10.0, f_hi: float = 20000.0):
     nominal labels from 10 Hz to 20 kHz overlapping [f_lo, f_hi], as ``postprocess.listening.listener.Bands``.
     Computed here rather than through pyfar: the radiate stage runs before the listening packages
     are installed (the same bands as ``listener.third_octave_bands``; tests/report/test_exports.py)."""
-    from postprocess.listening.listener import Bands
-
     x = np.arange(-20, 14)                                   # 10 Hz .. 20 kHz
     centre = 1000.0 * 10 ** (x / 10)
     lower, upper = centre * 10 ** (-1 / 20), centre * 10 ** (1 / 20)
@@ -69,8 +68,6 @@ def third_octaves(f_lo: float = 10.0, f_hi: float = 20000.0):
 def band_power(f, W, f_lo: float = 10.0, f_hi: float = 20000.0):
     """(Bands, W per band, W outside all bands): the entries W (W at frequencies f, Hz) summed into
     the 1/3-octave bands overlapping [f_lo, f_hi] (ideal edges, as the listen stage's bands)."""
-    from postprocess.listening.listener import band_sums
-
     bands = third_octaves(f_lo, f_hi)
     per, out = band_sums(f, W, bands)
     return bands, per, out

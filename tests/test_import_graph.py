@@ -112,3 +112,34 @@ def test_no_hand_kept_list_of_code_files():
                 if any(s.endswith(".py") for s in strings):
                     bad.append(f"{p.relative_to(ROOT)}:{node.lineno}")
     assert not bad, "hand-kept lists of code files (derive them with pipeline.store.code_hash.code_key):\n" + "\n".join(bad)
+
+
+def unexplained_local_imports(root: Path = ROOT) -> list[str]:
+    """Imports inside functions or classes without a comment on their line saying why (issue 34: a module's top
+    says what it depends on; a local import is the exception and carries its reason, e.g. '# lazy: brings in
+    dolfinx')."""
+    out = []
+    for mod, path in _modules(root).items():
+        src = path.read_text()
+        lines = src.splitlines()
+        for node in ast.walk(ast.parse(src)):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+                for sub in ast.walk(node):
+                    if isinstance(sub, (ast.Import, ast.ImportFrom)):
+                        text = "\n".join(lines[sub.lineno - 1:sub.end_lineno])
+                        if "#" not in text:
+                            out.append(f"{path.relative_to(root)}:{sub.lineno}: {lines[sub.lineno - 1].strip()}")
+    return sorted(set(out))
+
+
+def test_the_local_import_check_finds_an_unexplained_import(tmp_path):
+    pkg = tmp_path / "pipeline"
+    pkg.mkdir()
+    (pkg / "__init__.py").write_text("")
+    (pkg / "m.py").write_text("def f():\n    import json\n    import math  # lazy: reason\n    return json, math\n")
+    assert unexplained_local_imports(tmp_path) == ["pipeline/m.py:2: import json"]
+
+
+def test_local_imports_say_why():
+    bad = unexplained_local_imports()
+    assert not bad, "imports inside functions without a reason:\n" + "\n".join(bad[:40])

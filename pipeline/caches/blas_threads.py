@@ -22,6 +22,7 @@ import ctypes
 import functools
 import logging
 import threading
+import numpy
 
 log = logging.getLogger("pipeline.blas")
 
@@ -32,7 +33,6 @@ _STATE = {"depth": 0, "saved": [], "limiter": None}
 @functools.lru_cache(maxsize=1)
 def _openblas() -> tuple:
     """((set_num_threads, get_num_threads), ...) of every OpenBLAS library mapped into the process."""
-    import numpy  # noqa: F401  (loads the BLAS numpy links)
     import scipy.linalg  # noqa: F401  (and scipy's LAPACK)
 
     try:
@@ -93,7 +93,7 @@ def one_blas_thread():
                     s(1)
             else:
                 try:
-                    from threadpoolctl import threadpool_limits
+                    from threadpoolctl import threadpool_limits  # lazy: brings in threadpoolctl
                     _STATE["limiter"] = threadpool_limits(limits=1, user_api="blas")
                 except ImportError:
                     _warn_once()

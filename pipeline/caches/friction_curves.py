@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.store import artifacts, paths
+from pipeline.config.loader import Field, MISSING, ConfigError, config_hash
 
 log = logging.getLogger("pipeline.caches.friction_curves")
 
@@ -44,9 +45,8 @@ def friction_schema() -> dict:
     units and ranges from the registry (only the chosen law's may be given), or ``preset`` (a name
     of ``PRESETS``: the law and its parameters together).  ``resolve_friction`` checks which keys
     go together."""
-    from solvers.contact.friction_laws import LAWS, PRESETS
+    from solvers.contact.friction_laws import LAWS, PRESETS  # lazy: brings in numba, rocket_fft, scipy
 
-    from pipeline.config.loader import Field
 
     out = {"law": Field(str, choices=list(LAWS), default=None,
                         doc='friction law (default "coulomb"; its parameters are the other keys)'),
@@ -67,9 +67,8 @@ def resolve_friction(f: dict, source: str) -> Friction:
     line, naming ``source``, the key, its value and what is allowed) when its keys do not go
     together: a parameter of another law, a missing parameter, a preset with a law or parameters,
     or values the law refuses together (its coefficient leaving 0 < mu <= 1)."""
-    from solvers.contact.friction_laws import LAWS, PRESETS, get_friction_law, preset
+    from solvers.contact.friction_laws import LAWS, PRESETS, get_friction_law, preset  # lazy: brings in numba, rocket_fft, scipy
 
-    from pipeline.config.loader import MISSING, ConfigError
 
     given = {k: v for k, v in f.items() if k not in ("law", "preset") and v is not None}
     if f.get("preset") is not None:
@@ -111,7 +110,7 @@ def case_friction(c: dict, case: str | None = None) -> Friction:
 
 def compute_curve(p3, dx: float, dy: float, v: float, friction: Friction, E: float, nu: float) -> dict:
     """One curve, computed (no cache): ``rf_curve``'s fields as arrays (numeric fields only)."""
-    from solvers.contact.friction import rf_curve
+    from solvers.contact.friction import rf_curve  # lazy: brings in numba, rocket_fft, scipy
 
     curve = rf_curve(p3, dx, dy, v, friction.solver_law(), E, nu)
     out = {}
@@ -124,7 +123,7 @@ def compute_curve(p3, dx: float, dy: float, v: float, friction: Friction, E: flo
 
 def code_hash() -> str:
     """The key of the code a cached curve depends on: what ``compute_curve`` reaches."""
-    from pipeline.store.code_hash import code_key
+    from pipeline.store.code_hash import code_key  # here: Make's DEPS of the module's other entry points stay without it
 
     return code_key(*CURVE_FUNCTIONS)
 
@@ -148,7 +147,6 @@ class CurveCache:
     def __call__(self, p3, dx, dy, v, friction: Friction, E, nu) -> dict:
         if self.folder is None:
             return self._build(p3, dx, dy, v, friction, E, nu)
-        from pipeline.config.loader import config_hash
 
         cfg = {"contact": contact_key(p3, dx, dy, v, E, nu), "law": friction.label, "code": code_hash()}
         path = self.folder / f"{config_hash(cfg)}.npz"
@@ -199,7 +197,7 @@ def entries_of(frictions, curves) -> list[tuple]:
 
 def stored_entries(con) -> list[tuple]:
     """``curve_arrays``' entries of the curves held in a contact artifact's arrays."""
-    from solvers.timeloop.inputs import curve_labels
+    from solvers.timeloop.inputs import curve_labels  # lazy: brings in numba, rocket_fft, scipy
 
     labels = curve_labels(con)
     laws = [str(x) for x in con["rf_law"]] if "rf_law" in con else [lab.split("(")[0] for lab in labels]

@@ -33,6 +33,8 @@ import numpy as np
 from pipeline.store import artifacts, paths
 from pipeline.store.code_hash import code_key
 from pipeline.caches.blas_threads import pinned
+from pipeline.config.loader import config_hash
+from pipeline.stages.rail import rail_mesh
 
 log = logging.getLogger("pipeline.greens")
 
@@ -52,8 +54,6 @@ def kernel_config(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, gri
 
 
 def kernel_path(rail: str, cfg: dict):
-    from pipeline.config.loader import config_hash
-
     return paths.rail_dir(rail) / "moving" / f"{config_hash(cfg)[:16]}.npz"
 
 
@@ -61,9 +61,8 @@ def rail_kernel(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, grid:
     """The rail arrays of the greens artifact at y_r (signed), from the cache or built and
     cached; returns (arrays, loaded_from_cache).  rail_hash: the rail parameters' (rail.npz's) configuration
     hash; ``taper(f)`` rolls the receptance off."""
-    from solvers.rail.moving_kernel import mirror
+    from solvers.rail.moving_kernel import mirror  # lazy: brings in numba
 
-    from pipeline.stages.rail import rail_mesh
 
     rail_mesh(pr)                                   # section.msh, as the rail stage beside it makes it
     cfg = kernel_config(pr, rail_hash, y_r, v, dt, grid)
@@ -91,7 +90,7 @@ def wave_table_threads(model, freqs, y: float, workers: int = 2) -> dict:
     """``wave_table(model, freqs, points=[y])`` computed over ``workers`` frequency slices in
     threads (each frequency is independent: the same numbers as one call), OpenBLAS on one thread in
     each (``blas_threads``: the bits do not follow the process's thread count)."""
-    from solvers.rail.response import wave_table
+    from solvers.rail.response import wave_table  # lazy: brings in scipy
 
     parts = np.array_split(np.asarray(freqs, float), max(1, min(workers, len(freqs))))
     with ThreadPoolExecutor(len(parts)) as ex:
@@ -107,7 +106,7 @@ def table_transfer(T: dict, inside: np.ndarray, w: np.ndarray):
     """G(x, f) (n_x, n_f, 2, 2) of wave table ``T`` (frequencies f[inside]) times the taper ``w``,
     zero elsewhere: the input of the direct construction ``solvers.greens.kernels.moving_green`` that the
     wave-sum kernel replaces (its reference in the tests and the benchmark)."""
-    from solvers.rail.response import evaluate_table
+    from solvers.rail.response import evaluate_table  # lazy: brings in scipy
 
     def transfer(x, ff):
         G = np.zeros((len(x), len(ff), 2, 2), complex)
@@ -121,9 +120,9 @@ def build_kernel(pr: dict, y_r: float, v: float, dt: float, grid: dict, taper) -
     """Moving kernel g_mov (n_lags, 2, 2), the fixed-point kernel, its decay, the tail ratio and
     the point receptance at head point y_r >= 0 (module notes); OpenBLAS on one thread
     (``blas_threads``)."""
-    from solvers.greens.kernels import decayed, frequency_grid, green_from_receptance
-    from solvers.rail.moving_kernel import moving_green_waves
-    from pipeline.stages.rail_io import build_rail_model
+    from solvers.greens.kernels import decayed, frequency_grid, green_from_receptance  # lazy: brings in numba, scipy
+    from solvers.rail.moving_kernel import moving_green_waves  # lazy: brings in numba
+    from pipeline.stages.rail_io import build_rail_model  # lazy: brings in scipy
 
     n_t, n_lags = int(grid["n_t"]), int(grid["n_lags"])
     t0 = time.perf_counter()

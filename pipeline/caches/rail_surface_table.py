@@ -21,12 +21,18 @@ from __future__ import annotations
 import logging
 import time
 from concurrent.futures import ThreadPoolExecutor
+import fcntl
 
 import numpy as np
 
 from pipeline.store import artifacts, paths
 from pipeline.store.code_hash import code_key
 from pipeline.caches.blas_threads import pinned
+from pipeline.caches.rail_kernel import kernel_config, kernel_path
+from pipeline.config.loader import config_hash
+from geometry.rail import running_surface
+from pipeline.stages.rail import rail_mesh
+from solvers.rail.moving_static import static_kernel, static_waves
 
 log = logging.getLogger("pipeline.greens")
 
@@ -46,8 +52,6 @@ KERNEL_FUNCTIONS = ("pipeline.caches.rail_surface_table:kernel_from_waves",)
 def table_config(pr: dict, rail_hash: str, dt: float, grid: dict) -> dict:
     """What the surface wave table depends on: the rail kernel's key without the point, the speed
     and the lags (``rail_kernel.kernel_config``), plus this module's settings and code."""
-    from pipeline.caches.rail_kernel import kernel_config
-
     cfg = kernel_config(pr, rail_hash, 0.0, 1.0, dt, grid)
     for k in ("y_r_abs", "v", "n_lags"):
         cfg.pop(k, None)
@@ -56,8 +60,6 @@ def table_config(pr: dict, rail_hash: str, dt: float, grid: dict) -> dict:
 
 
 def table_dir(rail: str, cfg: dict):
-    from pipeline.config.loader import config_hash
-
     return paths.rail_dir(rail) / "surface" / config_hash(cfg)[:16]
 
 
@@ -65,11 +67,10 @@ def table_dir(rail: str, cfg: dict):
 def build_table(pr: dict, dt: float, grid: dict, folder, cfg: dict, workers: int = 2) -> None:
     """Compute the surface wave table (module notes) and write it to ``folder``; OpenBLAS on one thread
     (``blas_threads``: the same bits whoever builds it)."""
-    from geometry.rail import running_surface
-    from solvers.greens.kernels import frequency_grid
-    from solvers.rail.surface import family_shapes, load_points, surface_nodes, surface_polyline, surface_rows
+    from solvers.greens.kernels import frequency_grid  # lazy: brings in numba, scipy
+    from solvers.rail.surface import family_shapes, load_points, surface_nodes, surface_polyline, surface_rows  # lazy: brings in scipy
 
-    from pipeline.stages.rail_io import build_rail_model
+    from pipeline.stages.rail_io import build_rail_model  # lazy: brings in scipy
 
     t0 = time.perf_counter()
     poly = surface_polyline(running_surface(pr, pr.get("contact", {}).get("y", [])))
@@ -105,15 +106,13 @@ def build_table(pr: dict, dt: float, grid: dict, folder, cfg: dict, workers: int
 def point_waves(pr: dict, rail_hash: str, y_r: float, dt: float, grid: dict) -> tuple[np.ndarray, np.ndarray]:
     """k (nf, M) and a (nf, M, 2, 2) of the head point |y_r| from the surface table (built when
     missing), on the frequencies f < f_taper of Kropp's grid."""
-    from solvers.rail.surface import point_amplitudes, point_weights
+    from solvers.rail.surface import point_amplitudes, point_weights  # lazy: brings in scipy
 
     cfg = table_config(pr, rail_hash, dt, grid)
     folder = table_dir(pr["name"], cfg)
     try:
         w, _ = artifacts.load_npz(folder / "waves.npz", KIND_WAVES, cfg)
     except artifacts.ArtifactError:
-        import fcntl
-
         folder.mkdir(parents=True, exist_ok=True)
         with open(folder / ".lock", "w") as lock:     # one builder at a time (cases side by side, study workers)
             fcntl.flock(lock, fcntl.LOCK_EX)
@@ -132,10 +131,8 @@ def surface_kernel(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, gr
     """The rail arrays of the greens artifact at any head point y_r (signed), as
     ``rail_kernel.rail_kernel`` gives them at a listed point: from the moving-kernel cache, or
     built from the surface table and cached; returns (arrays, loaded_from_cache)."""
-    from solvers.rail.moving_kernel import mirror
+    from solvers.rail.moving_kernel import mirror  # lazy: brings in numba
 
-    from pipeline.caches.rail_kernel import kernel_config, kernel_path
-    from pipeline.stages.rail import rail_mesh
 
     rail_mesh(pr)
     cfg = dict(kernel_config(pr, rail_hash, y_r, v, dt, grid), surface=table_config(pr, rail_hash, dt, grid)["surface"],
@@ -164,9 +161,8 @@ def surface_kernel(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, gr
 def kernel_from_waves(k: np.ndarray, a: np.ndarray, v: float, dt: float, grid: dict, taper) -> dict:
     """The moving kernel, the fixed-point kernel, its decay, the tail ratio and the point receptance
     of a wave table (k, a) on Kropp's grid below f_taper: ``rail_kernel.build_kernel``'s arrays."""
-    from solvers.greens.kernels import decayed, frequency_grid, green_from_receptance
-    from solvers.rail.moving_kernel import moving_green_waves
-    from solvers.rail.moving_static import static_kernel, static_waves
+    from solvers.greens.kernels import decayed, frequency_grid, green_from_receptance  # lazy: brings in numba, scipy
+    from solvers.rail.moving_kernel import moving_green_waves  # lazy: brings in numba
 
     n_t, n_lags = int(grid["n_t"]), int(grid["n_lags"])
     f = frequency_grid(dt, n_t)

@@ -31,6 +31,9 @@ from pipeline.config.loader import ConfigError
 
 
 from pipeline.config.nouns import FrictionLaw
+from pipeline.caches.friction_curves import case_friction
+from pipeline.config.case_profiles import profile_file, case_contact, contact_parts
+from pipeline.config.check import time_step_problem
 
 
 @dataclass(frozen=True)
@@ -85,8 +88,6 @@ def resolve_friction(c: dict, name: str | None = None) -> FrictionLaw:
     """The friction of a validated case (``pipeline.caches.friction_curves.case_friction``: its law and
     parameters, or preset; a one-line ConfigError naming the case file when they do not go
     together)."""
-    from pipeline.caches.friction_curves import case_friction
-
     return case_friction(c, name)
 
 
@@ -94,10 +95,6 @@ def _resolved(name: str, c: dict, pw: dict, pr: dict, geo, friction: FrictionLaw
               source: str) -> ResolvedCase:
     """The ResolvedCase of a validated case dict and its wheel, rail and contact geometry (the time
     step checked as the greens stage would)."""
-    from pipeline.config.case_profiles import profile_file
-    from pipeline.config.check import time_step_problem              # a time step the greens stage would refuse: one line
-    from pipeline.config.loader import ConfigError
-
     problem = time_step_problem(c, c["rail"])
     if problem:
         raise ConfigError(source, [("time.dt", c["time"]["dt"], problem)])
@@ -133,7 +130,6 @@ def resolve_case(case: "str | ResolvedCase") -> ResolvedCase:
     why = paths.missing_case(name)
     if why:
         raise ConfigError(str(path), detail=why)
-    from pipeline.config.case_profiles import case_contact
 
     c, pw, pr, geo = case_contact(name)
     rc = _resolved(name, c, pw, pr, geo, resolve_friction(c, name), [path], str(path))
@@ -146,8 +142,6 @@ def resolve_built(name: str, c: dict, friction: FrictionLaw, source: str) -> Res
     """The ResolvedCase of a case built in memory (a curve's wheel: ``pipeline.curve.cases``): ``c``
     the validated case dict, ``friction`` already resolved (the curve's), ``source`` the file its
     input errors name.  Nothing is read but the wheel, rail and profile files."""
-    from pipeline.config.case_profiles import contact_parts
-
     pw, pr, geo = contact_parts(name, c, source)
     return _resolved(name, c, pw, pr, geo, friction, [], source)
 

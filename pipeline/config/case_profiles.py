@@ -29,7 +29,14 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.store import artifacts, paths
-from pipeline.config.loader import ConfigError, MissingInput, named_file
+from pipeline.config.loader import ConfigError, MissingInput, named_file, load
+from geometry.profiles import ProfileError, profile_from_text, build_profile, format_profile, check_points
+from geometry.standard_profiles import rail_head_points, wheel_tread_points
+from geometry.contact_point import FlangeContact, TrackRail, rigid_contact, wheel_shift
+from pipeline.stages.rail import load_rail_params
+from pipeline.stages.wheel import load_wheel
+from pipeline.config.input_schemas import CASE
+from geometry.miniprof import parse_miniprof, parse_plain, to_convention
 
 PROFILES = Path(os.environ.get("SQUEAL_PROFILE_DIR", paths.ROOT / "geometry" / "profiles"))
 
@@ -41,8 +48,6 @@ def profile_file(name: str) -> Path:
 def read_profile(name: str):
     """The Profile geometry/profiles/<name>.csv (validated, smoothed) and the
     file's hash; a bad file is a ConfigError naming the file and line."""
-    from geometry.profiles import ProfileError, profile_from_text
-
     path = profile_file(name)
     if not path.exists():
         have = sorted(p.stem for p in PROFILES.glob("*.csv"))
@@ -60,9 +65,6 @@ def case_profiles(c: dict, pw: dict, pr: dict, asked: dict | None = None):
     key), 'rail': (file, key)}: where ``c``'s ``contact.<kind>_profile`` comes from; a profile the wheel
     or rail file names is asked by that file's ``running_surface.profile``.  A missing profile file is
     an error naming the file and key that asked for it."""
-    from geometry.profiles import build_profile
-    from geometry.standard_profiles import rail_head_points, wheel_tread_points
-
     desc = {}
     asked = asked or {}
 
@@ -117,8 +119,6 @@ def contact_geometry(name: str, c: dict, pw: dict, pr: dict, source: str | None 
     """Profiles and rigid contact point of a loaded case; flange contact or
     profiles that do not meet are a one-line ConfigError naming the case
     (its file, or ``source``), its offset and why."""
-    from geometry.contact_point import FlangeContact, TrackRail, rigid_contact, wheel_shift
-
     wheel, rail, desc = case_profiles(c, pw, pr, {k: (paths.case_file(name), f"contact.{k}_profile")
                                                   for k in ("wheel", "rail")})
     inc = pr.get("running_surface", {}).get("inclination", 0.0) or 0.0
@@ -138,9 +138,6 @@ def contact_geometry(name: str, c: dict, pw: dict, pr: dict, source: str | None 
 def contact_parts(name: str, c: dict, source: str | None = None):
     """(wheel params, rail params, ContactGeometry) of a validated case dict ``c`` (a case file's or
     one built in memory: ``source`` names it in errors)."""
-    from pipeline.stages.rail import load_rail_params
-    from pipeline.stages.wheel import load_wheel
-
     pw, _ = named_file(source or name, "wheel", c["wheel"], load_wheel)   # a missing file: named with the key
     pr, _ = named_file(source or name, "rail", c["rail"], load_rail_params)
     return pw, pr, contact_geometry(name, c, pw, pr, source)
@@ -149,9 +146,6 @@ def contact_parts(name: str, c: dict, source: str | None = None):
 def case_contact(name: str):
     """(case, wheel params, rail params, ContactGeometry) of a case file:
     the contact point every stage uses (contact, greens, radiate)."""
-    from pipeline.config.loader import load
-    from pipeline.config.input_schemas import CASE
-
     path = paths.case_file(name)
     c = load(path, CASE)
     return (c, *contact_parts(name, c, str(path)))
@@ -159,8 +153,6 @@ def case_contact(name: str):
 
 def write_profile(name: str, meta: dict, y, z) -> Path:
     """Write geometry/profiles/<name>.csv atomically (y, z in m)."""
-    from geometry.profiles import format_profile
-
     path = profile_file(name)
     with artifacts.atomic_write(path) as tmp:
         Path(tmp).write_text(format_profile(meta, y, z), encoding="utf-8")
@@ -171,9 +163,6 @@ def import_profile(src: str, kind: str, name: str, mirror_y=False, flip_z=False,
                    noise=None) -> Path:
     """Convert a measured MiniProf .ban/.whl or plain (y, z) CSV file (mm)
     into geometry/profiles/<name>.csv; validated like every profile."""
-    from geometry.miniprof import parse_miniprof, parse_plain, to_convention
-    from geometry.profiles import ProfileError, build_profile
-
     text = Path(src).read_text(encoding="utf-8", errors="replace")
     try:
         if Path(src).suffix.lower() in (".ban", ".whl"):
@@ -183,7 +172,6 @@ def import_profile(src: str, kind: str, name: str, mirror_y=False, flip_z=False,
             header, (y, z, lines) = {}, parse_plain(text, src)
             what = f"plain y,z file {Path(src).name}"
         y, z, lines = to_convention(y, z, lines, kind, src, mirror_y, flip_z, y0, z0)
-        from geometry.profiles import check_points
 
         check_points(y, z, src, lines, "mm")
         build_profile(1e-3 * y, 1e-3 * z, kind, name, what, noise)  # smoothing must succeed too

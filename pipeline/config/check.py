@@ -14,21 +14,25 @@ from __future__ import annotations
 
 import logging
 import math
+import json
 
 import numpy as np
 
 from pipeline.store import paths
+from pipeline.config.loader import ConfigError, load, named_file
+from pipeline.config.case_profiles import read_profile, contact_geometry
+from pipeline.caches.friction_curves import case_friction
+from pipeline.stages.rail import load_rail_params
+from pipeline.config.input_schemas import CASE
+from pipeline.stages.wheel import load_wheel
+from solvers.greens.grid import RAIL_NT, WHEEL_BAND_LIMIT
 
 log = logging.getLogger("pipeline.config.check")
-
 
 
 def profile_problems(case: str, c: dict, pw: dict, pr: dict) -> None:
     """ConfigError naming the file and key of the first profile that cannot be used: missing,
     invalid, or of the wrong kind (a rail profile for the wheel)."""
-    from pipeline.config.loader import ConfigError
-    from pipeline.config.case_profiles import read_profile
-
     wheel_file, rail_file = paths.wheels() / f"{c['wheel']}.toml", paths.rail_file(c["rail"])
     sources = [("wheel", "contact.wheel_profile", c["contact"].get("wheel_profile"), paths.case_file(case)),
                ("rail", "contact.rail_profile", c["contact"].get("rail_profile"), paths.case_file(case)),
@@ -87,13 +91,7 @@ def outer_wheel_note(c: dict) -> str | None:
 def run_check(case: str, wheel: str | None, rail: str | None) -> list[str]:
     """Check the case (and ``wheel``, ``rail`` when given apart); return the lines to print.
     Raises ConfigError (one line) at the first problem."""
-    from pipeline.config.loader import ConfigError, load, named_file
-    from pipeline.caches.friction_curves import case_friction
-    from pipeline.config.rail_contact import rail_point
-    from pipeline.config.case_profiles import contact_geometry
-    from pipeline.stages.rail import load_rail_params
-    from pipeline.config.input_schemas import CASE
-    from pipeline.stages.wheel import load_wheel
+    from pipeline.config.rail_contact import rail_point  # here: Make's DEPS of the module's other entry points stay without it
 
     if wheel:
         named_file("command line", "--wheel", wheel, load_wheel)
@@ -115,7 +113,7 @@ def run_check(case: str, wheel: str | None, rail: str | None) -> list[str]:
     where = f"case '{case}', dy_WR = {1e3 * c['contact']['dy_wr']:+.1f} mm (y^W = {1e3 * geo.contact.y_wheel:+.2f} mm)"
     rail_point(c["rail"], pr, geo.contact.y_rail, where)
     if c["contact"].get("points", 1) == 2:                  # the second zone, as the contact stage asks for it
-        from pipeline.stages.second_point import second_zone
+        from pipeline.stages.second_point import second_zone  # lazy: brings in scipy
 
         second_zone(case, c, geo)
     problem = time_step_problem(c, c["rail"])
@@ -151,8 +149,6 @@ def rail_decay_time(rail: str) -> tuple[float, float] | None:
     """(decay time T (s), the time step it was measured at) of the rail's fixed-point Green's
     function, from the moving kernels of this rail already built (build/rails/<rail>/moving/; the
     longest over them), or None when there is none."""
-    import json
-
     best = None
     for f in sorted((paths.rail_dir(rail) / "moving").glob("*.npz")):
         try:
@@ -182,8 +178,6 @@ def time_step_problem(c: dict, rail: str) -> str | None:
     must have decayed by 60 dB at N_t dt / 2 (pipeline.caches.rail_kernel); how fast the rail's response
     decays is measured on a moving kernel of this rail already built (``rail_decay_time``); without
     one there is nothing to measure and the greens stage checks it."""
-    from solvers.greens.grid import RAIL_NT, WHEEL_BAND_LIMIT
-
     dt = c["time"]["dt"]
     hi = 0.5 / WHEEL_BAND_LIMIT
     decay = rail_decay_time(rail)

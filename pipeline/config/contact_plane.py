@@ -28,7 +28,7 @@ def frame_angles(c: dict, geo) -> tuple[float, float]:
 def normal_preload(c: dict, geo) -> float:
     """The static normal force of the case (N): the preload itself for angle = "none", else its
     resolution in the contact plane (``solvers.contact.frame.normal_preload``)."""
-    from solvers.contact.frame import normal_preload as resolve
+    from solvers.contact.frame import normal_preload as resolve  # lazy: brings in numba, rocket_fft, scipy
 
     F_L = c["loading"]["preload"]
     if c["contact"].get("angle", "none") == "none":
@@ -40,7 +40,7 @@ def project_greens(arrays: dict, angle_wheel: float, angle_rail: float) -> dict:
     """The greens arrays projected on the contact frame (new dict; the wheel's band-limited fit
     error ``wheel_fit_error`` stays the track frame's) plus ``contact_angle_wheel``,
     ``contact_angle_rail``.  Zero angles leave every array as it is."""
-    from solvers.contact.frame import project_receptance, project_shapes
+    from solvers.contact.frame import project_receptance, project_shapes  # lazy: brings in numba, rocket_fft, scipy
 
     out = dict(arrays)
     if angle_wheel != 0.0:

@@ -20,6 +20,7 @@ from pipeline.store import paths
 from pipeline.config.curve_schemas import CURVE, VEHICLE
 from pipeline.config.loader import ConfigError, load, validate
 from pipeline.config.nouns import Bogie, Curve, FrictionLaw, Train, Vehicle
+from pipeline.caches.friction_curves import resolve_friction
 
 
 def shipped_curves() -> Path:
@@ -109,8 +110,6 @@ def read_vehicle(name: str, beside: Path | None = None, asked_by: tuple[str, str
 def curve_of(data: dict, source: Path, name: str | None = None, vehicle: Vehicle | None = None) -> Curve:
     """The Curve of a validated curve dict read from (or written beside) ``source``: its vehicle
     looked up beside ``source`` first (or ``vehicle``), its friction resolved once."""
-    from pipeline.caches.friction_curves import resolve_friction
-
     source = Path(source)
     if vehicle is None:
         vehicle = read_vehicle(data["vehicle"], source.parent, asked_by=(str(source), "vehicle"))

@@ -29,6 +29,7 @@ from typing import Any, Mapping, NamedTuple, Sequence
 from pydantic import ValidationError
 
 from pipeline.config.schema import MISSING, REQUIRED, Field, ListOf, model_of
+from geometry.outline import GeometryError
 
 __all__ = [
     "REQUIRED",
@@ -300,8 +301,6 @@ def load_geometry(path, schema: Mapping, check, what: str, available: Sequence[s
     check ``check(params)`` (which raises geometry.outline.GeometryError);
     both kinds of problem come out as ConfigError naming the file.  ``what``
     ('wheel', 'rail') and ``available`` make the missing-file message."""
-    from geometry.outline import GeometryError
-
     if not os.path.exists(path):
         raise MissingInput(path, what, available)
     params = load(path, schema)

@@ -63,7 +63,7 @@ class FrictionLaw:
     @property
     def label(self) -> str:
         """The name of its friction curve in contact.npz and the curve cache."""
-        from solvers.timeloop.inputs import curve_label
+        from solvers.timeloop.inputs import curve_label  # lazy: brings in numba, rocket_fft, scipy
 
         return curve_label(self)
 
@@ -71,7 +71,7 @@ class FrictionLaw:
         """The solver's argument: the float mu for the Coulomb law, else the registry's law object."""
         if self.law == "coulomb":
             return float(dict(self.params)["mu"])
-        from solvers.contact.friction_laws import get_friction_law
+        from solvers.contact.friction_laws import get_friction_law  # lazy: brings in numba, rocket_fft, scipy
 
         return get_friction_law(self.law, **dict(self.params))
 

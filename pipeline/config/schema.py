@@ -33,8 +33,7 @@ import math
 from dataclasses import dataclass
 from typing import Annotated, Any, Mapping, Optional, Sequence
 
-from pydantic import AfterValidator, BaseModel, ConfigDict, create_model
-from pydantic import Field as PydanticField
+from pydantic import AfterValidator, BaseModel, ConfigDict, create_model, Field as PydanticField
 from pydantic_core import PydanticCustomError
 
 

@@ -4,13 +4,12 @@ schemas; the vehicle's ``name`` its file's), the wheel, rail and profile files t
 named with the file and key that asked for it), the steady curving and every wheel's operating point
 inside a case's range (``cases.wheel_case``).  One line per refusal (``pipeline.config.loader.ConfigError``)."""
 from __future__ import annotations
+from pipeline.curve.cases import wheel_case
+from pipeline.curve.stage import solve
 
 
 def check_curve(curve: str) -> list[str]:
     """The lines to print for a curve that the curve stage would run; ConfigError (one line) otherwise."""
-    from pipeline.curve.cases import wheel_case
-    from pipeline.curve.stage import solve
-
     sol = solve(curve)
     info, points = sol.curve, sol.wheels
     for p in points:

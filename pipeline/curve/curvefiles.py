@@ -10,6 +10,10 @@ import tomli_w
 
 from pipeline.config.nouns import Curve
 from pipeline.store.atomic import save_text
+from pipeline.config.curve_inputs import curve_of, read_curve
+from pipeline.config.curve_schemas import CURVE
+from pipeline.config.loader import validate
+from pipeline.store import paths
 
 
 def radius_curve(base: str | Path, folder: Path, radius: float, speed_kmh: float, cant: float,
@@ -17,11 +21,6 @@ def radius_curve(base: str | Path, folder: Path, radius: float, speed_kmh: float
     """The base curve (a shipped name or a curve file's path) with ``radius_m``, ``speed_kmh`` and
     ``cant_mm`` replaced, named ``name`` (default ``<base>-R<radius>``), its vehicle the base curve's;
     its record ``<folder>/<name>.toml`` written (unchanged files are not rewritten)."""
-    from pipeline.config.curve_inputs import curve_of, read_curve
-    from pipeline.config.curve_schemas import CURVE
-    from pipeline.config.loader import validate
-    from pipeline.store import paths
-
     src = read_curve(base)                               # the base is valid (ConfigError otherwise)
     data = tomllib.loads(src.source.read_text())
     name = name or f"{src.name}-R{radius:g}"

@@ -34,6 +34,11 @@ from dataclasses import asdict, dataclass
 from pipeline.config.curve_inputs import available_curves, read_curve
 from pipeline.config.loader import ConfigError, config_hash, named_file
 from pipeline.config.nouns import OPERATING_FIELDS, Curve, Vehicle, WheelOperatingPoint
+import numpy as np
+from geometry.contact_point import TrackRail
+from pipeline.config.case_profiles import case_profiles
+from pipeline.stages.rail import load_rail_params
+from pipeline.stages.wheel import load_wheel
 
 G = 9.81
 GAUGE_DEPTH = 0.014  # m below the crown top where the gauge is measured (EN 13848-1)
@@ -42,8 +47,6 @@ GAUGE_DEPTH = 0.014  # m below the crown top where the gauge is measured (EN 138
 def gauge_face(rail_t) -> float:
     """Track-frame Y (m, from the rail centre, negative) of the gauge face: the gauge-side point
     GAUGE_DEPTH below the crown top, or the profile's deepest gauge-side point when it ends above."""
-    import numpy as np
-
     Y = rail_t.y
     z = np.asarray(rail_t(Y), float)
     top = int(np.nanargmax(z))
@@ -77,12 +80,6 @@ class CurveSolution:
 def _profiles(curve: Curve):
     """(wheel params, rail params, wheel Profile, rail Profile, TrackRail, profile names); a missing wheel,
     rail or profile file is an error naming the file (vehicle or curve) and the key that asked for it."""
-    from geometry.contact_point import TrackRail
-
-    from pipeline.config.case_profiles import case_profiles
-    from pipeline.stages.rail import load_rail_params
-    from pipeline.stages.wheel import load_wheel
-
     vf, cf = curve.vehicle.source, curve.source
     pw, _ = named_file(vf, "wheel", curve.wheel, load_wheel)
     pr, _ = named_file(cf, "rail", curve.rail, load_rail_params)
@@ -95,7 +92,7 @@ def _profiles(curve: Curve):
 def build_problem(curve: Curve | str, **overrides):
     """(Curve, Vehicle, solvers' Vehicle, Track, Profiles, CreepLaw, names) of a curve (a Curve, a
     path or a shipped name; ``overrides`` as in ``pipeline.config.curve_inputs.read_curve``)."""
-    from solvers.curving import CreepLaw, Profiles, Track, Vehicle as VehicleModel, flange_edge
+    from solvers.curving import CreepLaw, Profiles, Track, Vehicle as VehicleModel, flange_edge  # lazy: brings in numba, rocket_fft, scipy
 
     c = read_curve(curve, **overrides)
     v, b = c.vehicle, c.vehicle.bogie
@@ -152,8 +149,8 @@ def _point(row: dict, extra: dict) -> WheelOperatingPoint:
 
 
 def _solve(c: Curve) -> CurveSolution:
-    from solvers.curving import solve
-    from solvers.curving.summary import wheel_points
+    from solvers.curving import solve  # lazy: brings in numba, rocket_fft, scipy
+    from solvers.curving.summary import wheel_points  # lazy: brings in numba, rocket_fft, scipy
 
     c, v, veh, trk, prof, law, names = build_problem(c)
     sol = solve(prof, veh, trk, law)
@@ -194,7 +191,7 @@ FIELDS = OPERATING_FIELDS
 
 
 def main(argv=None) -> int:
-    from solvers.curving import CurvingError
+    from solvers.curving import CurvingError  # lazy: brings in numba, rocket_fft, scipy
 
     ap = argparse.ArgumentParser(prog="python -m pipeline.curve.curving",
                                  description="steady curving of a curve file's vehicle: every wheel of the leading bogie")

@@ -36,8 +36,8 @@ def _state(r: dict) -> str:
 
 def _plan(ax, info, points, rows) -> float:
     """The left panel; returns the yaw's drawing factor."""
-    import matplotlib.pyplot as plt
-    from matplotlib.lines import Line2D
+    import matplotlib.pyplot as plt  # lazy: brings in matplotlib
+    from matplotlib.lines import Line2D  # lazy: brings in matplotlib
 
     a, R, b = 0.5 * info.wheelbase, info.radius, 0.5 * CONTACT_SPACING
     x = np.linspace(-1.6 * a - 0.5, 1.6 * a + 0.5, 200)
@@ -93,10 +93,10 @@ CONTACT_SPACING = 1.5  # m between the rolling circles of a standard-gauge wheel
 
 def bogie_figure(info, points, rows):
     """The figure of the Curve ``info`` with its WheelOperatingPoints ``points`` and verdict ``rows``."""
-    import matplotlib
+    import matplotlib  # lazy: brings in matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: brings in matplotlib
 
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.8), gridspec_kw={"width_ratios": [1.5, 1]})
     _plan(ax, info, points, rows)

@@ -16,11 +16,19 @@ from __future__ import annotations
 
 import logging
 import time
+import fcntl
 
 import numpy as np
 
 from pipeline.store import artifacts, paths
 from pipeline.caches.blas_threads import one_blas_thread, pinned
+from pipeline.caches.rail_kernel import kernel_config, wave_table_threads, KIND, kernel_path
+from pipeline.config.loader import config_hash
+from pipeline.stages.rail import rail_mesh
+from pipeline.store.code_hash import code_key
+from pipeline.caches.rail_surface_table import table_dir
+from solvers.greens.grid import RAIL_F_MAX, RAIL_F_TAPER, RAIL_LAGS, RAIL_NT, rail_taper
+from pipeline.stages.greens import rail_greens
 
 log = logging.getLogger("pipeline.greens")
 
@@ -29,8 +37,6 @@ KIND_TABLE = "rail-point-waves"
 
 def table_config(pr: dict, rail_hash: str, y_r: float, dt: float, grid: dict) -> dict:
     """The wave table's key: the kernel's (``rail_kernel.kernel_config``) without the speed and lags."""
-    from pipeline.caches.rail_kernel import kernel_config
-
     cfg = kernel_config(pr, rail_hash, y_r, 1.0, dt, grid)
     for k in ("v", "n_lags"):
         cfg.pop(k, None)
@@ -39,13 +45,9 @@ def table_config(pr: dict, rail_hash: str, y_r: float, dt: float, grid: dict) ->
 
 def point_table(pr: dict, rail_hash: str, y_r: float, dt: float, grid: dict) -> dict:
     """{'k', 'a'} of the head point y_r >= 0 on Kropp's grid below the taper's end (cached; module notes)."""
-    import fcntl
+    from solvers.greens.kernels import frequency_grid  # lazy: brings in numba, scipy
 
-    from solvers.greens.kernels import frequency_grid
-
-    from pipeline.config.loader import config_hash
-    from pipeline.caches.rail_kernel import wave_table_threads
-    from pipeline.stages.rail_io import build_rail_model
+    from pipeline.stages.rail_io import build_rail_model  # lazy: brings in scipy
 
     cfg = table_config(pr, rail_hash, y_r, dt, grid)
     path = paths.rail_dir(pr["name"]) / "points" / f"{config_hash(cfg)[:16]}.npz"
@@ -74,8 +76,8 @@ def point_table(pr: dict, rail_hash: str, y_r: float, dt: float, grid: dict) -> 
 @pinned
 def kernel_from_table(T: dict, v: float, dt: float, grid: dict, taper) -> dict:
     """``rail_kernel.build_kernel``'s arrays from the point's wave table (the same calls after the table)."""
-    from solvers.greens.kernels import decayed, frequency_grid, green_from_receptance
-    from solvers.rail.moving_kernel import moving_green_waves
+    from solvers.greens.kernels import decayed, frequency_grid, green_from_receptance  # lazy: brings in numba, scipy
+    from solvers.rail.moving_kernel import moving_green_waves  # lazy: brings in numba
 
     n_t, n_lags = int(grid["n_t"]), int(grid["n_lags"])
     f = frequency_grid(dt, n_t)
@@ -97,10 +99,8 @@ def kernel_from_table(T: dict, v: float, dt: float, grid: dict, taper) -> dict:
 def listed_kernel(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, grid: dict, taper) -> dict:
     """The rail arrays at the listed point y_r (signed) as ``rail_kernel.rail_kernel`` returns them: from
     the moving-kernel cache, or built from the cached wave table and stored there."""
-    from solvers.rail.moving_kernel import mirror
+    from solvers.rail.moving_kernel import mirror  # lazy: brings in numba
 
-    from pipeline.caches.rail_kernel import KIND, kernel_config, kernel_path
-    from pipeline.stages.rail import rail_mesh
 
     rail_mesh(pr)
     cfg = kernel_config(pr, rail_hash, y_r, v, dt, grid)
@@ -136,14 +136,10 @@ def surface_arrays(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, gr
     """``rail_surface.surface_kernel``'s arrays at a point off the listed ones, with the surface table's
     files (its waves and the node shapes) held in memory per process: the same calls on the same arrays
     (bit for bit).  None when the surface table is not built yet (``surface_kernel`` builds it)."""
-    from solvers.rail.moving_kernel import mirror
-    from solvers.rail.surface import point_amplitudes, point_weights
+    from solvers.rail.moving_kernel import mirror  # lazy: brings in numba
+    from solvers.rail.surface import point_amplitudes, point_weights  # lazy: brings in scipy
 
-    from pipeline.store.code_hash import code_key
-    from pipeline.caches.rail_kernel import kernel_config, kernel_path
-    from pipeline.stages.rail import rail_mesh
-    from pipeline.caches.rail_surface_table import KERNEL_FUNCTIONS, KIND_KERNEL, KIND_NODE, KIND_WAVES, kernel_from_waves, table_config
-    from pipeline.caches.rail_surface_table import table_dir
+    from pipeline.caches.rail_surface_table import KERNEL_FUNCTIONS, KIND_KERNEL, KIND_NODE, KIND_WAVES, kernel_from_waves, table_config  # local: the module binds table_config otherwise
 
     rail_mesh(pr)
     tcfg = table_config(pr, rail_hash, dt, grid)
@@ -171,10 +167,6 @@ def surface_arrays(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, gr
 def rail_arrays(pr: dict, y_r: float, v: float, dt: float) -> dict:
     """``stages.greens.rail_greens``'s arrays at the rail model's point y_r (``stages.greens.rail_point``),
     a listed point's through ``listed_kernel``."""
-    from pipeline.config.loader import config_hash
-    from solvers.greens.grid import RAIL_F_MAX, RAIL_F_TAPER, RAIL_LAGS, RAIL_NT, rail_taper
-    from pipeline.stages.greens import rail_greens
-
     grid = {"n_t": RAIL_NT, "n_lags": RAIL_LAGS, "f_max": RAIL_F_MAX, "f_taper": RAIL_F_TAPER}
     if np.any(np.abs(np.abs(np.asarray(pr["contact"]["y"], float)) - abs(y_r)) < 1e-12):
         return listed_kernel(pr, config_hash(pr), y_r, v, dt, grid, rail_taper)

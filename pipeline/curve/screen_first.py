@@ -30,11 +30,22 @@ import contextlib
 import logging
 import os
 import time
+import importlib
 
 import numpy as np
 
 from pipeline.store import artifacts, paths
-from pipeline.config.case import ResolvedCase, loop_arguments, resolve_case
+from pipeline.config.case import ResolvedCase, loop_arguments, resolve_case, given
+from geometry.wheel import tread_radius
+from pipeline.config.rail_contact import rail_point
+from pipeline.curve.rail_point import rail_arrays
+from pipeline.study.context import CaseContext
+from solvers.stability.mitigation import growing_wheel_root
+from pipeline.curve.what_ifs import CaseModels
+from pipeline.curve.stage import operating_row, COLUMNS, solve, wheel_verdict
+from solvers.study import squeals
+from pipeline.curve.cases import wheel_case, write_case
+from pipeline.curve.verdict_report import cell
 
 log = logging.getLogger("pipeline.curve")
 
@@ -64,8 +75,7 @@ def wheel_modes(wheel: str, pw: dict) -> dict:
 def wheel_at_contact(pw: dict, modes: dict, y_w: float) -> dict:
     """f, modal mass, damping and the shapes at the tread point y^W: ``stages.greens.wheel_greens``'s
     modal data without its kernel (the same calls, the same numbers)."""
-    from geometry.wheel import tread_radius
-    from solvers.wheel.receptance import contact_point, contact_shape, modal_damping
+    from solvers.wheel.receptance import contact_point, contact_shape, modal_damping  # lazy: brings in scipy
 
     surface = np.unique(np.concatenate([modes["boundary_tread"], modes["boundary_flange"]]))
     where = contact_point(modes["points"], surface, y_w, pw["axle"]["rolling_circle_z"],
@@ -78,10 +88,7 @@ def wheel_at_contact(pw: dict, modes: dict, y_w: float) -> dict:
 def screen_context(case: "str | ResolvedCase"):
     """The ``pipeline.study.context.CaseContext`` of a case (a name or a ResolvedCase) from arrays
     computed here (module notes)."""
-    from pipeline.stages.contact import build_contact
-    from pipeline.config.rail_contact import rail_point
-    from pipeline.curve.rail_point import rail_arrays
-    from pipeline.study.context import CaseContext
+    from pipeline.stages.contact import build_contact  # lazy: brings in numba, rocket_fft, scipy
 
     t0 = time.perf_counter()
     rc = resolve_case(case)
@@ -111,10 +118,6 @@ def screen_context(case: "str | ResolvedCase"):
 def screen(case: "str | ResolvedCase", gamma_y: float):
     """(fastest growing wheel-mode pole or None, its mode label, the CaseContext or None) of a curve
     wheel, as ``stage.screen_wheel`` finds it, from ``screen_context``."""
-    from solvers.stability.mitigation import growing_wheel_root
-
-    from pipeline.curve.what_ifs import CaseModels
-
     if gamma_y == 0.0:
         return None, "", None
     ctx = screen_context(case)
@@ -128,7 +131,7 @@ def screen(case: "str | ResolvedCase", gamma_y: float):
 def time_loop_L_F2(case: "str | ResolvedCase", ctx) -> float:
     """L_F2 (dB re 1 N) of the simulate stage's time loop of the case, from the screen's arrays: the
     same call as ``stages.simulate.run_simulate`` (so the same number), without its files and figure."""
-    from solvers.timeloop.interaction import WheelModes, contact_model, simulate
+    from solvers.timeloop.interaction import WheelModes, contact_model, simulate  # lazy: brings in numba, rocket_fft, scipy
 
     w = ctx.wheel
     res = simulate(WheelModes(w["f"], w["mass"], w["zeta"], w["phi"]), ctx.rail_kernel,
@@ -139,8 +142,6 @@ def time_loop_L_F2(case: "str | ResolvedCase", ctx) -> float:
 
 def quiet_row(p, root, label: str) -> dict:
     """A verdict.csv row of a wheel the time loop is not run for (``stage.COLUMNS``)."""
-    from pipeline.curve.stage import operating_row
-
     row = operating_row(p)
     if root is not None:
         row |= {"screen_sigma": float(root.sigma), "screen_f": float(root.f_hz), "screen_mode": label}
@@ -158,8 +159,6 @@ def without_figures(skip: bool = True):
     """While it lasts (``skip``), the stages write their artifacts but draw no figure and the listen stage
     makes no pass-by (together about two thirds of a squealing wheel's stages' time; `python -m pipeline
     listen --case <curve>/<wheel>` makes them): those functions replaced by no-ops, restored after."""
-    import importlib
-
     saved = []
     try:
         if skip:
@@ -178,13 +177,6 @@ def run_screen_first(curve, *, what_ifs: bool = False, write: bool = True, figur
     (module notes): {'rows': one per wheel (``stage.COLUMNS``, plus ``time_loop``: whether it ran),
     'info': the Curve}; ``write``: build/curves/<curve>/verdict.csv; ``figures``: the stages of a
     squealing wheel draw their figures (``without_figures`` otherwise)."""
-    from solvers.study import squeals
-
-    from pipeline.config.case import given
-    from pipeline.curve.cases import wheel_case, write_case
-    from pipeline.curve.verdict_report import cell
-    from pipeline.curve.stage import COLUMNS, solve, wheel_verdict
-
     t0 = time.perf_counter()
     sol = solve(curve)
     info, points = sol.curve, sol.wheels

@@ -24,6 +24,7 @@ from __future__ import annotations
 import logging
 import math
 import time
+import csv
 
 import numpy as np
 
@@ -31,6 +32,19 @@ from pipeline.store import artifacts, paths
 from pipeline.store.atomic import save_figure, save_text
 from pipeline.progress import progress
 from pipeline.config.nouns import OPERATING_FIELDS, Curve, WheelOperatingPoint
+from pipeline.config.loader import ConfigError, issue_text
+from pipeline.config.curve_inputs import read_curve
+from pipeline.curve.curving import solve_curve
+from pipeline.stages.greens import run_greens
+from pipeline.stages.listen import run_listen, listen_files, receiver_tag
+from pipeline.stages.radiate import run_radiate
+from pipeline.stages.simulate import run_simulate
+from solvers.stability.mitigation import growing_wheel_root
+from pipeline.curve.what_ifs import CaseModels, damping_what_if, friction_what_if
+from solvers.study import nearest_mode, squeals
+from pipeline.config.case import given
+from pipeline.curve import figures as plot, verdict_report as report
+from pipeline.curve.cases import wheel_case, write_case
 
 log = logging.getLogger("pipeline.curve")
 
@@ -44,8 +58,6 @@ UNITS = {"dy_wr": "m", "angle_of_attack": "rad", "spin": "1/m", "y_wheel": "m", 
 
 def one_line(e):
     """A ConfigError with its problems on one line (file: key = value: expected range; ...)."""
-    from pipeline.config.loader import ConfigError, issue_text
-
     if not e.errors:
         return e
     return ConfigError(e.source, detail="; ".join(issue_text(*x) for x in e.errors))
@@ -54,11 +66,7 @@ def one_line(e):
 def solve(curve):
     """The curving solution of ``curve`` (a Curve, a path to a curve file or a shipped name;
     pipeline.curve.curving; a bad curve or vehicle file: a ConfigError in one line)."""
-    from pipeline.config.curve_inputs import read_curve
-    from pipeline.config.loader import ConfigError
-    from pipeline.curve.curving import solve_curve
-
-    from solvers.curving import CurvingError
+    from solvers.curving import CurvingError  # lazy: brings in numba, rocket_fft, scipy
 
     try:
         curve = read_curve(curve)
@@ -79,11 +87,7 @@ def operating_row(p: WheelOperatingPoint) -> dict:
 
 def run_stages(name: str, stages) -> None:
     """Run the pipeline stages ``stages`` for the case ``name`` in this process."""
-    from pipeline.stages.contact import run_contact
-    from pipeline.stages.greens import run_greens
-    from pipeline.stages.listen import run_listen
-    from pipeline.stages.radiate import run_radiate
-    from pipeline.stages.simulate import run_simulate
+    from pipeline.stages.contact import run_contact  # lazy: brings in numba, rocket_fft, scipy
 
     run = {"contact": run_contact, "greens": run_greens, "simulate": run_simulate, "radiate": run_radiate,
            "listen": lambda n: run_listen(n, allow_silent=True)}
@@ -93,10 +97,6 @@ def run_stages(name: str, stages) -> None:
 
 def screen_wheel(name: str, gamma_y: float) -> tuple:
     """(models, fastest growing wheel-mode pole or None, label) of a curve wheel's case."""
-    from solvers.stability.mitigation import growing_wheel_root
-
-    from pipeline.curve.what_ifs import CaseModels
-
     models = CaseModels(name)
     if gamma_y == 0.0:
         return models, None, ""
@@ -109,8 +109,6 @@ def wheel_verdict(curve: Curve, p: WheelOperatingPoint, *, what_ifs: bool = True
     simulate stage) for every wheel with lateral creepage, confirming or overruling the screen; for a
     squealing wheel radiation, listening and the mitigation what-ifs.  The wheel's ResolvedCase is
     the one handed to the stages (``pipeline.config.case.given``)."""
-    from pipeline.curve.what_ifs import damping_what_if, friction_what_if
-
     name = f"{curve.name}/{p.wheel}"
     row = operating_row(p)
     run_stages(name, ["contact", "greens"])
@@ -122,7 +120,6 @@ def wheel_verdict(curve: Curve, p: WheelOperatingPoint, *, what_ifs: bool = True
     run_stages(name, ["simulate"])            # the time loop confirms (or overrules) the screen's verdict
     d = paths.case_dir(name)
     sim = dict(np.load(d / "simulate.npz", allow_pickle=False))
-    from solvers.study import nearest_mode, squeals
 
     L_F2, f = float(sim["L_F2"]), float(sim["f_dominant"])
     row["squeals"] = squeals(L_F2)
@@ -133,7 +130,6 @@ def wheel_verdict(curve: Curve, p: WheelOperatingPoint, *, what_ifs: bool = True
         lis = dict(np.load(d / "listen.npz", allow_pickle=False))
         w = models.ctx.wheel
         i = nearest_mode(f, w["f"], models.ctx.flexible, 0.05, (1, 2, 3))
-        from pipeline.stages.listen import listen_files, receiver_tag
 
         wav = listen_files(name, receiver_tag(lis["distance"], lis["height"]))["wav"]   # listen_<receiver>.wav
         row |= {"mode": models.ctx.label(i) if i is not None else "", "L_W": float(rad["L_W"]),
@@ -154,10 +150,6 @@ def wheel_verdict(curve: Curve, p: WheelOperatingPoint, *, what_ifs: bool = True
 def run_curve(curve, *, progress_bar: bool = True, what_ifs: bool = True) -> dict:
     """The verdict of ``curve`` (a Curve, a path to a curve file or a shipped name; module notes).
     Returns {'rows', 'info' (the Curve), 'paths'}."""
-    from pipeline.config.case import given
-    from pipeline.curve import figures as plot, verdict_report as report
-    from pipeline.curve.cases import wheel_case, write_case
-
     t0 = time.perf_counter()
     sol = solve(curve)
     info, points = sol.curve, sol.wheels
@@ -186,8 +178,6 @@ def run_curve(curve, *, progress_bar: bool = True, what_ifs: bool = True) -> dic
 
 def read_verdict(path) -> list[dict]:
     """The rows of a verdict.csv (floats, NaN for empty cells; ``squeals`` bool; ``contact_points`` int)."""
-    import csv
-
     text = {"wheel", "screen_mode", "mode", "zeta_needed", "wav"}
     rows = []
     with open(path, newline="", encoding="utf-8") as fh:

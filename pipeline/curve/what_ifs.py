@@ -28,6 +28,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from solvers.constants import SQUEAL_LEVEL_DB
+from solvers.stability.mitigation import threshold, screen_outcome, coulomb_curve_at, growing_wheel_root
+from solvers.study import damping_procedure, squeals
+from pipeline.study.context import load_context
+from pipeline.caches.friction_curves import stored_entries
 
 log = logging.getLogger("pipeline.curve")
 
@@ -43,8 +47,6 @@ class CaseModels:
     """One case's linearised and time-domain models at any friction coefficient and wheel damping."""
 
     def __init__(self, case: str):
-        from pipeline.study.context import load_context
-
         self._setup(load_context(case, radiation=False))
 
     @classmethod
@@ -55,8 +57,6 @@ class CaseModels:
         return self
 
     def _setup(self, ctx) -> None:
-        from pipeline.caches.friction_curves import stored_entries
-
         self.ctx = ctx
         self.spin = float(ctx.spin)                           # 1/m
         self.friction = ctx.friction                          # the case's own law (its curve is in contact.npz)
@@ -71,8 +71,7 @@ class CaseModels:
     def contact(self, mu: float):
         """The case's ContactModel with the Coulomb friction curve at ``mu`` (any value), scaled from
         the nearest curve the contact artifact holds (exact: ``solvers.stability.mitigation``)."""
-        from solvers.timeloop.interaction import contact_model
-        from solvers.stability.mitigation import coulomb_curve_at
+        from solvers.timeloop.interaction import contact_model  # lazy: brings in numba, rocket_fft, scipy
 
         if not self.coulomb:                                  # another law: its own curve, at its own mu only
             if abs(mu - self.ctx.mu) > 1e-12:
@@ -86,14 +85,14 @@ class CaseModels:
         return cm._replace(s_nodes=s, mu_nodes=m, slopes=k, mu=float(mu))
 
     def wheel(self, zeta=None, modes=None):
-        from pipeline.study.worker import _wheel
+        from pipeline.study.worker import _wheel  # lazy: brings in numba, rocket_fft, scipy
 
         return _wheel(self.ctx, zeta, modes)
 
     def roots(self, mu: float, zeta=None, modes=None):
         """The stability screen's closed-loop poles (fastest growing first); pole ``mode`` indices
         refer to the full modal set."""
-        from solvers.stability.screen import linearise, screen
+        from solvers.stability.screen import linearise, screen  # lazy: brings in numba
 
         c = self.ctx
         idx = np.arange(len(c.wheel["f"])) if modes is None else np.asarray(modes, int)
@@ -110,16 +109,12 @@ class CaseModels:
         return [r._replace(mode=int(idx[r.mode]) if r.mode >= 0 else -1) for r in screen(lm)]
 
     def unstable(self, mu: float) -> bool:
-        from solvers.stability.mitigation import growing_wheel_root
-
         return growing_wheel_root(self.roots(mu)) is not None
 
     def simulate(self, mu: float, zeta=None) -> dict:
         """One time-loop run as the simulate stage's (SPEC 6: at most 8 s, early stop at a limit cycle,
         the case's creepages and spin): L_F2, f_dominant, squeals."""
-        from solvers.study import squeals
-
-        from solvers.timeloop.interaction import StopRule, simulate
+        from solvers.timeloop.interaction import StopRule, simulate  # lazy: brings in numba, rocket_fft, scipy
 
         ctx = self.ctx
         res = simulate(self.wheel(zeta), ctx.rail_kernel, self.contact(mu),
@@ -151,8 +146,6 @@ class FrictionWhatIf:
 
 def friction_what_if(models: CaseModels, *, tol: float = MU_TOL, confirm: bool = True) -> FrictionWhatIf:
     """The friction coefficient below which the case stops squealing (module notes)."""
-    from solvers.stability.mitigation import threshold
-
     mu = float(models.ctx.mu)
     out = FrictionWhatIf(mu)
     if not models.coulomb:
@@ -185,9 +178,6 @@ class DampingWhatIf:
 
 def damping_what_if(models: CaseModels, *, confirm: bool = True) -> DampingWhatIf:
     """The modal damping the squealing mode(s) need at the case's operating point (module notes)."""
-    from solvers.stability.mitigation import screen_outcome
-    from solvers.study import damping_procedure
-
     ctx = models.ctx
     w = ctx.wheel
     gen = damping_procedure(w["zeta"], w["f"], ctx.flexible, level=SQUEAL_LEVEL_DB, zeta_max=ZETA_MAX,

@@ -24,6 +24,15 @@ import numpy as np
 
 from pipeline.store import artifacts, paths
 from pipeline.store.atomic import save_figure
+from pipeline.config.case import resolve_case
+from pipeline.stages.second_point import second_zone, second_contact_arrays
+from solvers.contact.compliance import compliance_table
+from solvers.contact.norm import norm_table, table_midpoint_error
+from pipeline.caches.friction_curves import as_friction, case_friction, compute_curve, curve_arrays, entries_of
+from solvers.contact.surfaces import patch_metrics
+from pipeline.config.contact_plane import normal_preload
+from pipeline.config.check import outer_wheel_note, over_radial_note
+from pipeline.config.loader import ConfigError
 
 log = logging.getLogger("pipeline.contact")
 
@@ -32,12 +41,9 @@ from solvers.contact.static import DY, ConformalContact, static_contact  # noqa:
 
 def contact_setup(case: str) -> tuple[dict, dict, dict, object, dict]:
     """(case, wheel, rail, ContactGeometry, resolved config) of a case (``pipeline.config.case.resolve_case``)."""
-    from pipeline.config.case import resolve_case
-
     rc = resolve_case(case)
     cfg = dict(rc.config, friction=rc.friction.config(), dy=DY)
     if rc.case["contact"].get("points", 1) == 2:  # [contact] points = 2: the second zone must exist (one-line error)
-        from pipeline.stages.second_point import second_zone
 
         second_zone(case, rc.case, rc.geometry)
     return rc.case, rc.wheel, rc.rail, rc.geometry, cfg
@@ -58,14 +64,7 @@ def build_contact(c: dict, pw: dict, geo, n_table: int = 41, frictions=None, cur
     default, or a ``CurveCache``).  ``diagnostics``: the NORM table's measured interpolation error
     (``table_error_*``, a NORM solve per interval: about a third of the stage; no solver reads it;
     empty arrays without)."""
-    from solvers.contact.compliance import compliance_table
-    from solvers.contact.norm import norm_table, table_midpoint_error
-
-    from pipeline.caches.friction_curves import as_friction, case_friction, compute_curve, curve_arrays, entries_of
-    from solvers.contact.surfaces import patch_metrics
-
     E, nu = pw["material"]["E"], pw["material"]["nu"]
-    from pipeline.config.contact_plane import normal_preload
 
     v, dt = c["kinematics"]["speed"], c["time"]["dt"]
     F_L = normal_preload(c, geo)  # [contact] angle: the preload resolved in the contact plane
@@ -100,10 +99,8 @@ def build_contact(c: dict, pw: dict, geo, n_table: int = 41, frictions=None, cur
 
 
 def run_contact(case: str) -> dict:
-    from pipeline.caches.friction_curves import contact_curve_cache
+    from pipeline.caches.friction_curves import contact_curve_cache  # here: Make's DEPS of the module's other entry points stay without it
 
-    from pipeline.config.case import resolve_case
-    from pipeline.config.check import outer_wheel_note, over_radial_note
 
     c, pw, pr, geo, cfg = contact_setup(case)
     friction = resolve_case(case).friction                # resolved once, with the case
@@ -116,11 +113,9 @@ def run_contact(case: str) -> dict:
     try:
         arrays = build_contact(c, pw, geo, frictions=[friction], curve=cache)
         if c["contact"].get("points", 1) == 2:  # [contact] points = 2: the second patch (pipeline/stages/second_point.py)
-            from pipeline.stages.second_point import second_contact_arrays
 
             arrays.update(second_contact_arrays(case, c, pw, geo, float(arrays["preload_normal"]), friction))
     except ConformalContact as e:                      # a contact of the case's input: one line, no traceback
-        from pipeline.config.loader import ConfigError
 
         raise ConfigError(str(paths.case_file(case)), [("contact.dy_wr", c["contact"]["dy_wr"], f"not a contact "
                                                         f"this model can solve: {e}")]) from None
@@ -140,6 +135,6 @@ def run_contact(case: str) -> dict:
 
 def plot_rf(a: dict, path, title: str) -> None:
     """``postprocess.plots.contact.friction_curves_figure``, saved atomically to ``path``."""
-    from postprocess.plots.contact import friction_curves_figure
+    from postprocess.plots.contact import friction_curves_figure  # here: Make's DEPS of the module's other entry points stay without it
 
     save_figure(friction_curves_figure(a, title), path, dpi=100)

@@ -51,13 +51,13 @@ from pipeline.store import artifacts, paths
 from pipeline.store.atomic import save_figure
 from pipeline.config.contact_plane import case_projection
 from pipeline.config.rail_contact import rail_point
+from pipeline.config.case import resolve_case
+from pipeline.config.loader import config_hash
+from geometry.wheel import tread_radius
 
 log = logging.getLogger("pipeline.greens")
 
 def greens_inputs(case: str):
-    from pipeline.config.case import resolve_case
-    from pipeline.config.loader import config_hash
-
     rc = resolve_case(case)  # the contact point of the profiles, as the contact stage's
     c, pw, pr, geo = rc.case, rc.wheel, rc.rail, rc.geometry
     where = f"case '{case}', dy_WR = {1e3 * c['contact']['dy_wr']:+.1f} mm (y^W = {1e3 * geo.contact.y_wheel:+.2f} mm)"
@@ -77,10 +77,9 @@ def greens_inputs(case: str):
 
 
 def wheel_greens(pw: dict, modes: dict, y_w: float, dt: float) -> dict:
-    from geometry.wheel import tread_radius
-    from solvers.greens.kernels import choose_grid
-    from solvers.wheel.modal_band import corrected_modal_kernel, decay_db
-    from solvers.wheel.receptance import contact_point, contact_shape, modal_damping
+    from solvers.greens.kernels import choose_grid  # lazy: brings in numba, scipy
+    from solvers.wheel.modal_band import corrected_modal_kernel, decay_db  # lazy: brings in numba, scipy
+    from solvers.wheel.receptance import contact_point, contact_shape, modal_damping  # lazy: brings in scipy
 
     surface = np.unique(np.concatenate([modes["boundary_tread"], modes["boundary_flange"]]))
     z_rc = pw["axle"]["rolling_circle_z"]
@@ -110,8 +109,8 @@ def rail_greens(pr: dict, rail_hash: str, y_r: float, v: float, dt: float) -> tu
     build/rails/<rail>/moving/ or built there (pipeline/caches/rail_kernel.py at the rail file's listed
     points, pipeline/caches/rail_surface_table.py at any other point of the running surface); also whether it
     came from the cache.  rail_hash: the rail parameters' configuration hash (rail.npz's)."""
-    from pipeline.caches.rail_kernel import rail_kernel
-    from pipeline.caches.rail_surface_table import surface_kernel
+    from pipeline.caches.rail_kernel import rail_kernel  # here: Make's DEPS of the module's other entry points stay without it
+    from pipeline.caches.rail_surface_table import surface_kernel  # here: Make's DEPS of the module's other entry points stay without it
 
     grid = {"n_t": RAIL_NT, "n_lags": RAIL_LAGS, "f_max": RAIL_F_MAX, "f_taper": RAIL_F_TAPER}
     if np.any(np.abs(np.abs(np.asarray(pr["contact"]["y"], float)) - abs(y_r)) < 1e-12):
@@ -120,8 +119,6 @@ def rail_greens(pr: dict, rail_hash: str, y_r: float, v: float, dt: float) -> tu
 
 
 def run_greens(case: str) -> dict:
-    from pipeline.config.case import resolve_case
-
     c, pw, pr, modes, (yw, yr, y_rail_contact), cfg = greens_inputs(case)
     dt, v = c["time"]["dt"], c["kinematics"]["speed"]
     t0 = time.perf_counter()
@@ -133,7 +130,7 @@ def run_greens(case: str) -> dict:
     arrays.update(rail)
     arrays = case_projection(resolve_case(case), arrays)  # [contact] angle: the contact plane's frame (pipeline/config/contact_plane.py)
     if c["contact"].get("points", 1) == 2:  # [contact] points = 2: both points (pipeline/stages/greens_two_point.py)
-        from pipeline.stages.greens_two_point import second_greens
+        from pipeline.stages.greens_two_point import second_greens  # here: Make's DEPS of the module's other entry points stay without it
 
         arrays.update(second_greens(case, pw, pr, modes, yr, dt, v))
     t2 = time.perf_counter()
@@ -151,6 +148,6 @@ def run_greens(case: str) -> dict:
 
 def plot_kernels(a: dict, path, case: str) -> None:
     """``postprocess.plots.greens.kernels_figure``, saved atomically to ``path``."""
-    from postprocess.plots.greens import kernels_figure
+    from postprocess.plots.greens import kernels_figure  # here: Make's DEPS of the module's other entry points stay without it
 
     save_figure(kernels_figure(a, case), path, dpi=90)

@@ -19,6 +19,11 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from pipeline.store import paths
+from pipeline.config.contact_plane import frame_angles
+from solvers.greens.grid import RAIL_F_TAPER, RAIL_LAGS, RAIL_NT, rail_taper
+from pipeline.stages.rail import rail_mesh
+from geometry.wheel import tread_radius
+from pipeline.config.case import resolve_case
 
 log = logging.getLogger("pipeline.greens")
 
@@ -28,8 +33,6 @@ BLOCKS = ("aa", "ab", "ba", "bb")
 def point_frames(c: dict, geo, zone) -> tuple[tuple[float, float], tuple[float, float]]:
     """((wheel, rail) angle of point a, (wheel, rail) angle of point b) in rad: zeros for angle =
     "none", else each zone's contact angle (rail: minus the inclination)."""
-    from pipeline.config.contact_plane import frame_angles
-
     a = frame_angles(c, geo)
     if c["contact"].get("angle", "none") == "none":
         return a, (0.0, 0.0)
@@ -49,13 +52,11 @@ def rail_node(pr: dict, y_r: float) -> float:
 
 def rail_blocks(pr: dict, y_a: float, y_b: float, v: float, dt: float) -> dict:
     """The four moving-kernel blocks (n_lags, 2, 2) at head points y_a, y_b (greens grid/taper)."""
-    from solvers.greens.kernels import frequency_grid
-    from solvers.rail.moving_kernel import moving_green_waves
-    from solvers.rail.transfer import block_wave_table
+    from solvers.greens.kernels import frequency_grid  # lazy: brings in numba, scipy
+    from solvers.rail.moving_kernel import moving_green_waves  # lazy: brings in numba
+    from solvers.rail.transfer import block_wave_table  # lazy: brings in scipy
 
-    from solvers.greens.grid import RAIL_F_TAPER, RAIL_LAGS, RAIL_NT, rail_taper
-    from pipeline.stages.rail_io import build_rail_model
-    from pipeline.stages.rail import rail_mesh
+    from pipeline.stages.rail_io import build_rail_model  # lazy: brings in scipy
 
     rail_mesh(pr)
     msh = paths.rail_dir(pr["name"]) / "section.msh"
@@ -76,12 +77,10 @@ def second_greens(case: str, pw: dict, pr: dict, modes: dict, y_rail_a: float, d
     """greens.npz's second-point arrays: ``b_wheel_phi`` (M, 2), ``rail_kernel_<pq>`` (blocks),
     ``b_y_wheel``, ``b_y_rail`` (the zone's), ``b_y_rail_model`` (the rail node used), the angles
     ``b_contact_angle_wheel``, ``b_contact_angle_rail``."""
-    from geometry.wheel import tread_radius
-    from solvers.contact.frame import project_shapes, project_transfer
-    from solvers.wheel.receptance import contact_point, contact_shape
+    from solvers.contact.frame import project_shapes, project_transfer  # lazy: brings in numba, rocket_fft, scipy
+    from solvers.wheel.receptance import contact_point, contact_shape  # lazy: brings in scipy
 
-    from pipeline.config.case import resolve_case
-    from pipeline.stages.second_point import second_zone
+    from pipeline.stages.second_point import second_zone  # lazy: brings in scipy
 
     rc = resolve_case(case)
     c, geo = rc.case, rc.geometry

@@ -34,7 +34,7 @@ CASE_FLOWS = {"D": 1.0, "E": 1.0, "N": 1.0}  # squealing passages per hour in lw
 def radiation_tables(a: dict, out, speed_m_s: float) -> dict:
     """Write the radiate stage's CSV exports (module docstring) from radiate.npz's arrays ``a`` into
     the folder ``out``; returns {name: path}."""
-    from postprocess.exports import band_power, level, lw_railway_columns, lw_railway_record, nm_band_levels
+    from postprocess.exports import band_power, level, lw_railway_columns, lw_railway_record, nm_band_levels  # here: Make's DEPS of the module's other entry points stay without it
 
     written = {}
     f, W = np.asarray(a["f"], float), np.asarray(a["W"], float)
@@ -78,7 +78,7 @@ def write_vtk(case: str, model, rad: dict, out, n_phi: int = 48, n_frames: int =
     """The wheel's mode shapes and the squealing wheel's ODS as VTK files in ``out`` (module
     docstring); ``model``: the case's radiation model (``load_radiation_model``), ``rad``: its
     radiate.npz.  Returns {name: path}."""
-    from postprocess.modes.vtk_export import mode_field, modal_amplitudes, ods_frames, wheel_surface
+    from postprocess.modes.vtk_export import mode_field, modal_amplitudes, ods_frames, wheel_surface  # lazy: brings in pyvista, scipy
 
     modes = model.meta["modes"]
     surf = wheel_surface(modes["points"], modes["cells"], n_phi)

@@ -20,6 +20,8 @@ import numpy as np
 from pipeline.store import artifacts, paths
 from pipeline.store.atomic import save_figure
 from pipeline.config.loader import config_hash
+from postprocess.listening.audio import FS
+from postprocess.listening import audio as A
 
 log = logging.getLogger("pipeline.listen")
 SEED = 0  # the bogies' phases
@@ -34,8 +36,7 @@ def passby_files(case: str, tag: str) -> dict:
 def compute_passby(c: dict, geo, rad: dict) -> tuple[dict, np.ndarray]:
     """(arrays of passby_<tag>.npz, the unweighted pressure signal in Pa) of the case ``c`` (validated
     dict) at the receiver ``geo`` (postprocess.listening.listener.Geometry) from radiate.npz's arrays."""
-    from postprocess.listening import passby as P
-    from postprocess.listening.audio import FS
+    from postprocess.listening import passby as P  # lazy: brings in scipy
 
     pb = c["listener"]["passby"]
     train = P.Train(pb["n_bogies"], pb["bogie_spacing"], c["kinematics"]["speed"], pb["window"])
@@ -57,8 +58,7 @@ def compute_passby(c: dict, geo, rad: dict) -> tuple[dict, np.ndarray]:
 
 def run_passby(case: str, c: dict, geo, rad: dict, listen_cfg: dict, tag: str) -> dict:
     """Compute and write the pass-by of one receiver (module docstring)."""
-    from postprocess.listening import audio as A
-    from postprocess.plots.passby import passby_figure
+    from postprocess.plots.passby import passby_figure  # here: Make's DEPS of the module's other entry points stay without it
 
     arrays, p = compute_passby(c, geo, rad)
     cfg = {"listen": config_hash(listen_cfg), "passby": c["listener"]["passby"], "speed": c["kinematics"]["speed"],

@@ -54,6 +54,12 @@ from solvers.constants import F_MAX_HZ, SQUEAL_LEVEL_DB
 
 from pipeline.store import artifacts, paths
 from pipeline.store.atomic import save_figure
+from pipeline.config.case import resolve_case
+from geometry.wheel import surface_radii, tread_radius, wheel_segments
+from solvers.radiation.surfaces import radiation_surfaces, surface_nodes
+from pipeline.config.loader import config_hash
+from pipeline.stages.simulate import simulate_config
+from solvers.spectra import amplitude_spectrum
 
 log = logging.getLogger("pipeline.radiate")
 
@@ -63,8 +69,6 @@ SETTINGS = {"rho": 1.21, "c0": 343.0, "faces": 2, "web_thickness": "tyre", "tors
 
 
 def _case_wheel(case: str):
-    from pipeline.config.case import resolve_case
-
     rc = resolve_case(case)  # the contact point of the profiles, as the contact and greens stages'
     c, pw, y_w = rc.case, rc.wheel, rc.contact.y_wheel
     modes, mprov = artifacts.load_npz(paths.wheel_dir(c["wheel"]) / "modes.npz", "wheel-modes", pw,
@@ -78,10 +82,8 @@ def load_radiation_model(case: str, zeta_overrides: dict | None = None):
     surfaces, surface nodes, the contact point (interpolated on the running surface
     exactly as the Green's functions stage does, so the wheel is the simulation's), damping [4.11] (``zeta_overrides`` {mode index: zeta} as
     ``solvers.wheel.receptance.modal_damping``).  Load once, reuse for many force sets."""
-    from geometry.wheel import surface_radii, tread_radius, wheel_segments
-    from solvers.radiation.force_power import build_model
-    from solvers.radiation.surfaces import radiation_surfaces, surface_nodes
-    from solvers.wheel.receptance import contact_point, contact_shape, modal_damping
+    from solvers.radiation.force_power import build_model  # lazy: brings in scipy
+    from solvers.wheel.receptance import contact_point, contact_shape, modal_damping  # lazy: brings in scipy
 
     c, pw, modes, mprov, y_w = _case_wheel(case)
     surf = radiation_surfaces(surface_radii(pw), wheel_segments(pw), web_thickness=SETTINGS["web_thickness"],
@@ -105,7 +107,7 @@ def sound_power_of_forces(model, F, dt: float) -> dict:
     (dB re 1e-12 W), 'f_sound' (Hz, frequency of the largest entry), 'f', 'W' (W per
     entry: residual bins and tones), and 'W_n', 'harmonics', 'is_tone', 'W_total',
     'decomposition' (solvers.radiation.force_power.power_of_forces)."""
-    from solvers.radiation.force_power import power_of_forces
+    from solvers.radiation.force_power import power_of_forces  # lazy: brings in scipy
 
     F = np.asarray(F, float)
     if F.ndim != 2 or F.shape[1] != 3:
@@ -119,9 +121,6 @@ def sound_power_of_forces(model, F, dt: float) -> dict:
 
 def radiate_config(case: str, model) -> tuple[dict, dict]:
     """(simulate config, this stage's config)."""
-    from pipeline.config.loader import config_hash
-    from pipeline.stages.simulate import simulate_config
-
     scfg = simulate_config(case)[-1]
     return scfg, {"case": case, "wheel_modes": model.meta["modes_hash"], "simulate": config_hash(scfg),
                   "settings": SETTINGS}
@@ -129,8 +128,7 @@ def radiate_config(case: str, model) -> tuple[dict, dict]:
 
 def compute_radiation(case: str, model=None) -> tuple[dict, object, dict]:
     """(arrays of radiate.npz, model, config) from the current artifacts; writes nothing."""
-    from solvers.radiation.force_power import frequency_grid_for, mode_at, unit_force_curve
-    from solvers.spectra import amplitude_spectrum
+    from solvers.radiation.force_power import frequency_grid_for, mode_at, unit_force_curve  # lazy: brings in scipy
 
     model = model or load_radiation_model(case)
     scfg, cfg = radiate_config(case, model)
@@ -212,7 +210,7 @@ def run_radiate(case: str) -> dict:
     plot_radiation(arrays, out / "radiate.png", case)
     artifacts.save_csv(out / "radiate_harmonics.csv",
                        ["n", "W_W", "L_W_dB", "share", "f_peak_hz", "mode", "mode_f_hz"], harmonic_rows(arrays))
-    from pipeline.stages.listen_exports import radiation_tables
+    from pipeline.stages.listen_exports import radiation_tables  # here: Make's DEPS of the module's other entry points stay without it
 
     radiation_tables(arrays, out, _case_speed(case))  # CSV spectra, bands, LW_RAILWAY (pipeline/stages/listen_exports.py)
     artifacts.save_npz(out / "radiate.npz", "radiate", cfg, **arrays)
@@ -224,13 +222,11 @@ def run_radiate(case: str) -> dict:
 
 
 def _case_speed(case: str) -> float:
-    from pipeline.config.case import resolve_case
-
     return float(resolve_case(case).case["kinematics"]["speed"])
 
 
 def plot_radiation(a: dict, path, case: str) -> None:
     """radiate.png (``postprocess.plots.radiate.radiation_figure``), written atomically."""
-    from postprocess.plots.radiate import radiation_figure
+    from postprocess.plots.radiate import radiation_figure  # here: Make's DEPS of the module's other entry points stay without it
 
     save_figure(radiation_figure(a, case), path, dpi=90)

@@ -12,6 +12,9 @@ from __future__ import annotations
 
 import logging
 import time
+import filecmp
+import shutil
+import tempfile
 
 import numpy as np
 
@@ -21,6 +24,7 @@ from pipeline.store import artifacts, paths
 from pipeline.store.atomic import save_figure
 from pipeline.config.loader import load_geometry
 from pipeline.config.input_schemas import RAIL
+from geometry.rail import check_rail
 
 log = logging.getLogger("pipeline.rail")
 
@@ -31,8 +35,6 @@ X_MAX = 2.0
 
 def load_rail_params(name: str) -> tuple[dict, str]:
     """Validated rail parameters (geometry checked too) and the file path."""
-    from geometry.rail import check_rail
-
     path = paths.rail_file(name)
     return load_geometry(path, RAIL, check_rail, "rail", paths.available(paths.rails())), str(path)
 
@@ -42,11 +44,7 @@ def rail_mesh(p: dict):
     deterministic) and written atomically unless the file there is identical, which is then left
     untouched.  The rail and greens stages both call it (they run side by side: the greens stage
     needs the mesh, not rail.npz); returns the path."""
-    import filecmp
-    import shutil
-    import tempfile
-
-    from geometry.rail_mesh import mesh_rail
+    from geometry.rail_mesh import mesh_rail  # here: Make's DEPS of the module's other entry points stay without it
 
     path = paths.rail_dir(p["name"]) / "section.msh"
     with tempfile.TemporaryDirectory() as d:
@@ -59,7 +57,7 @@ def rail_mesh(p: dict):
 
 
 def run_rail(name: str) -> dict:
-    from pipeline.stages.rail_io import build_rail_model, stage_arrays
+    from pipeline.stages.rail_io import build_rail_model, stage_arrays  # lazy: brings in scipy
 
     p, _ = load_rail_params(name)
     out = paths.rail_dir(name)
@@ -79,13 +77,13 @@ def run_rail(name: str) -> dict:
 
 def plot_receptances(a: dict, path, name: str) -> None:
     """``postprocess.plots.rail.receptance_figure``, saved atomically to ``path``."""
-    from postprocess.plots.rail import receptance_figure
+    from postprocess.plots.rail import receptance_figure  # here: Make's DEPS of the module's other entry points stay without it
 
     save_figure(receptance_figure(a, name), path, dpi=90)
 
 
 def plot_dispersion(a: dict, path, name: str) -> None:
     """``postprocess.plots.rail.dispersion_figure``, saved atomically to ``path``."""
-    from postprocess.plots.rail import dispersion_figure
+    from postprocess.plots.rail import dispersion_figure  # here: Make's DEPS of the module's other entry points stay without it
 
     save_figure(dispersion_figure(a, name), path, dpi=90)

@@ -10,15 +10,14 @@ from solvers.rail import waveguide as wg
 from solvers.constants import F_MAX_HZ
 from solvers.rail.model import RailModel, assemble_rail_model, contact_points
 from solvers.rail.response import evaluate_table, wave_sum_decay_rate, wave_table
-
+import tomllib
+from geometry.mesher import read_msh
 
 
 def load_rail(path) -> dict:
     """Read a rail parameter file (TOML) into a plain dict (no schema here; the pipeline's
     configuration schema validates types (``stages.rail.load_rail_params``), geometry.rail's
     check_rail the geometry).  The pad's width defaults to the foot's."""
-    import tomllib
-
     with open(path, "rb") as fh:
         p = tomllib.load(fh)
     p.setdefault("pad", {})
@@ -31,8 +30,6 @@ def build_rail_model(rail: dict, msh_path, contact_y=None, basis: dict | None = 
                      with_centre: bool = True, verbose: bool = False) -> RailModel:
     """Read the half-section mesh written by geometry.rail_mesh.mesh_rail and build the rail
     model (``solvers.rail.model.assemble_rail_model``, same arguments)."""
-    from geometry.mesher import read_msh
-
     mesh, ct, ft = read_msh(msh_path)
     return assemble_rail_model(rail, mesh, ct, ft, contact_y=contact_y, basis=basis, with_centre=with_centre,
                                verbose=verbose)

@@ -16,7 +16,21 @@ from solvers.constants import SQUEAL_LEVEL_DB
 
 from pipeline.store import artifacts, paths
 
-from pipeline.stages.report_headline import headline, headline_markdown
+from pipeline.stages.report_headline import headline, headline_markdown, stability_of
+from pipeline.stages.wheel import load_wheel
+from pipeline.stages.rail import load_rail_params
+from postprocess.plots.contact import friction_curves_figure, mark_operating_slip, operating_point
+from pipeline.store.atomic import save_figure
+from pipeline.stages.greens import greens_inputs
+from pipeline.stages.simulate import simulate_config
+from pipeline.stages.radiate import load_radiation_model, radiate_config
+from pipeline.stages.listen import listen_files, listener_inputs, load_listening, receiver_tag, receivers
+from pipeline.stages.passby import passby_files
+from pipeline.config.case import resolve_case
+from pipeline.config.check import outer_wheel_note, over_radial_note
+from pipeline.stages.listen_exports import case_vtk
+from pipeline.study.report_section import studies_section
+from pipeline.stages.report_html import write_html
 
 log = logging.getLogger("pipeline.stages.report")
 
@@ -27,8 +41,6 @@ def flat(case: str) -> str:
 
 
 def wheel_section(wheel: str, figdir) -> str:
-    from pipeline.stages.wheel import load_wheel
-
     p, src = load_wheel(wheel)
     wdir = paths.wheel_dir(wheel)
     a, prov = artifacts.load_npz(wdir / "modes.npz", "wheel-modes", p, make_target=f"modes WHEEL={wheel}")
@@ -54,8 +66,6 @@ The squeal candidates, axial modes with no nodal circle (n, 0, a): {', '.join(f'
 
 
 def rail_section(rail: str, figdir) -> str:
-    from pipeline.stages.rail import load_rail_params
-
     p, src = load_rail_params(rail)
     rdir = paths.rail_dir(rail)
     a, prov = artifacts.load_npz(rdir / "rail.npz", "rail", p, make_target=f"rail RAIL={rail}")
@@ -82,10 +92,6 @@ def contact_section(case: str, cfg: dict, figdir, c: dict | None = None) -> str:
     a, _ = artifacts.load_npz(paths.case_dir(case) / "contact.npz", "contact", cfg, make_target=f"contact CASE={case}")
     op = ""
     if c is not None:
-        from postprocess.plots.contact import friction_curves_figure, mark_operating_slip, operating_point
-
-        from pipeline.store.atomic import save_figure
-
         kin, mu = c["kinematics"], c["friction"].get("mu")
         mu = float("nan") if mu is None else float(mu)       # a friction law without a Coulomb mu: the slip only
         s_op, mu_op = operating_point(a, kin["speed"], kin["gamma_y"], kin.get("gamma_x", 0.0), mu)
@@ -110,8 +116,6 @@ peak pressure {float(p.max()) / 1e9:.2f} GPa. Regularized friction curves (Kalke
 
 
 def greens_section(case: str, figdir) -> str:
-    from pipeline.stages.greens import greens_inputs
-
     cfg = greens_inputs(case)[-1]
     a, _ = artifacts.load_npz(paths.case_dir(case) / "greens.npz", "greens", cfg, make_target=f"greens CASE={case}")
     shutil.copy2(paths.case_dir(case) / "greens.png", figdir / f"{flat(case)}_greens.png")
@@ -127,8 +131,6 @@ tail at {float(a['rail_tail_ratio']):.1e} of the peak.
 
 
 def simulate_section(case: str, figdir) -> str:
-    from pipeline.stages.simulate import simulate_config
-
     a, _ = artifacts.load_npz(paths.case_dir(case) / "simulate.npz", "simulate", simulate_config(case)[-1],
                               make_target=f"simulate CASE={case}")
     shutil.copy2(paths.case_dir(case) / "simulate.png", figdir / f"{flat(case)}_simulate.png")
@@ -143,8 +145,6 @@ def simulate_section(case: str, figdir) -> str:
 
 
 def radiate_section(case: str, figdir) -> str:
-    from pipeline.stages.radiate import load_radiation_model, radiate_config
-
     a, _ = artifacts.load_npz(paths.case_dir(case) / "radiate.npz", "radiate",
                               radiate_config(case, load_radiation_model(case))[1], make_target=f"radiate CASE={case}")
     shutil.copy2(paths.case_dir(case) / "radiate.png", figdir / f"{flat(case)}_radiate.png")
@@ -170,8 +170,6 @@ Overall L_W = {float(a['L_W']):.1f} dB re 1e-12 W; loudest at {float(a['f_sound'
 
 def stability_section(case: str, figdir) -> str:
     """The stability screen (pipeline/stages/stability.py): every closed-loop pole, fastest first."""
-    from pipeline.stages.report_headline import stability_of
-
     head = "## Stability screen\n\n"
     st = stability_of(case)
     if st is None:
@@ -200,8 +198,6 @@ def listen_section(case: str, figdir) -> str:
     """'What a listener hears' (pipeline/stages/listen.py): every receiver computed, side by side, and the
     case's own one in detail (its spectrum, bands, WAV), when `make listen` has run for the current
     radiate and simulate artifacts; its files copied beside the report."""
-    from pipeline.stages.listen import listen_files, listener_inputs, load_listening, receiver_tag, receivers
-
     head = "## What a listener hears\n\n"
     tags = receivers(case)
     if not tags:
@@ -262,8 +258,6 @@ the limit cycle in the file is {float(a['wav_L_p']):.1f} dB at {float(a['wav_f_p
 def passby_section(case: str, tag: str, figdir, listen_hash: str) -> str:
     """The pass-by at receiver ``tag`` (pipeline/stages/passby.py), when the listen stage wrote it for the
     listening artifact of hash ``listen_hash``."""
-    from pipeline.stages.passby import passby_files
-
     files = passby_files(case, tag)
     if not files["npz"].exists():
         return ""
@@ -316,8 +310,6 @@ def case_line(cpath, c: dict, friction: str) -> str:
 
 
 def run_report(case: str) -> str:
-    from pipeline.config.case import resolve_case
-
     rc = resolve_case(case)
     cpath, c = rc.case_file, rc.case
     out = paths.build() / "report" / case
@@ -326,12 +318,11 @@ def run_report(case: str) -> str:
     sections = [f"# Curve squeal report: case `{case}`\n\n{c['description']}\n\n"
                 + case_line(cpath, c, rc.friction.text),
                 wheel_section(c["wheel"], figdir), rail_section(c["rail"], figdir)]
-    from pipeline.config.check import outer_wheel_note, over_radial_note
 
     note = over_radial_note(c) or outer_wheel_note(c)
     if note:
         sections.insert(1, f"**Note.** {note}.\n")
-    from pipeline.stages.contact import contact_inputs
+    from pipeline.stages.contact import contact_inputs  # lazy: brings in numba, rocket_fft, scipy
 
     sections.append(contact_section(case, contact_inputs(case)[3], figdir, c))
     sections.append(greens_section(case, figdir))
@@ -339,11 +330,9 @@ def run_report(case: str) -> str:
     sections.append(stability_section(case, figdir))
     sections.append(radiate_section(case, figdir))
     sections.append(listen_section(case, figdir))
-    from pipeline.stages.listen_exports import case_vtk
 
     sim, rad, model = case_results(case)
     sections.append(exports_section(case, case_vtk(case, model, rad)))
-    from pipeline.study.report_section import studies_section
 
     sections.append(studies_section(figdir))
     # the headline block (pipeline/stages/report_headline.py) right under the title, before anything else
@@ -352,7 +341,6 @@ def run_report(case: str) -> str:
     text = "\n".join(sections)
     with artifacts.atomic_write(out / "report.md") as tmp:
         tmp.write_text(text)
-    from pipeline.stages.report_html import write_html
 
     write_html(out / "report.md", f"Curve squeal report: {case}")
     log.info("report %s -> %s, report.html", case, out / "report.md")
@@ -361,9 +349,6 @@ def run_report(case: str) -> str:
 
 def case_results(case: str):
     """(simulate.npz, radiate.npz, the radiation model) of the case, checked against its inputs."""
-    from pipeline.stages.radiate import load_radiation_model, radiate_config
-    from pipeline.stages.simulate import simulate_config
-
     cdir = paths.case_dir(case)
     sim, _ = artifacts.load_npz(cdir / "simulate.npz", "simulate", simulate_config(case)[-1],
                                 make_target=f"simulate CASE={case}")

@@ -10,6 +10,8 @@ import numpy as np
 from solvers.constants import SQUEAL_F_MIN_HZ, SQUEAL_LEVEL_DB
 
 from pipeline.store import artifacts, paths
+from pipeline.stages.simulate import simulate_config
+from pipeline.stages.listen import load_listening
 
 
 def verdict(L_F2: float, f_hz: float) -> str:
@@ -22,8 +24,6 @@ def verdict(L_F2: float, f_hz: float) -> str:
 
 def stability_of(case: str):
     """stability.npz when it exists and matches the case's current simulation inputs, else None."""
-    from pipeline.stages.simulate import simulate_config
-
     path = paths.case_dir(case) / "stability.npz"
     if not path.exists():
         return None
@@ -35,8 +35,6 @@ def stability_of(case: str):
 
 def listening_of(case: str):
     """listen.npz (the case's own receiver) when it exists and is current, else None."""
-    from pipeline.stages.listen import load_listening
-
     if not (paths.case_dir(case) / "listen.npz").exists():
         return None
     try:

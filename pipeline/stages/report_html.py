@@ -39,7 +39,7 @@ def render(markdown: str, base: Path, title: str) -> str:
     """HTML of ``markdown`` with its local figures (relative to ``base``) embedded; a link to a .wav
     becomes an <audio controls> element.  A figure that does not exist raises FileNotFoundError
     (a report must not ship a broken image)."""
-    from markdown_it import MarkdownIt
+    from markdown_it import MarkdownIt  # lazy: brings in markdown_it
 
     md = MarkdownIt("commonmark", {"html": False}).enable("table")
     tokens = md.parse(markdown)

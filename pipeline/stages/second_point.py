@@ -28,6 +28,7 @@ import numpy as np
 from geometry.turned import turned_geometry
 from pipeline.store import paths
 from pipeline.config.loader import ConfigError
+from pipeline.caches.friction_curves import compute_curve, curve_arrays, entries_of
 
 TRACK_FRAME_MAX = np.radians(15.0)   # angle = "none" with a second zone steeper than this: a one-line error
 
@@ -80,11 +81,10 @@ def second_contact_arrays(name: str, c: dict, pw: dict, geo, F_L: float, frictio
     0 .. 2x the approach at which it alone would carry F_L (the first patch's static normal force:
     the range the load can move through), compliances, and the friction curve of ``friction`` (the
     case's resolved ``FrictionLaw``)."""
-    from solvers.contact.compliance import compliance_table
-    from solvers.contact.norm import norm_table
+    from solvers.contact.compliance import compliance_table  # lazy: brings in numba
+    from solvers.contact.norm import norm_table  # lazy: brings in numba
 
-    from solvers.contact.static import DY, static_contact
-    from pipeline.caches.friction_curves import compute_curve, curve_arrays, entries_of
+    from solvers.contact.static import DY, static_contact  # lazy: brings in numba, rocket_fft
 
     z = second_zone(name, c, geo)
     E, nu = pw["material"]["E"], pw["material"]["nu"]
@@ -106,7 +106,7 @@ def second_contact_arrays(name: str, c: dict, pw: dict, geo, F_L: float, frictio
 def second_contact_model(con, friction):
     """The second patch's ContactModel from contact.npz's ``b_*`` arrays (``friction``: the case's
     ``pipeline.caches.friction_curves.Friction`` or a Coulomb mu)."""
-    from solvers.timeloop.interaction import contact_model
+    from solvers.timeloop.interaction import contact_model  # lazy: brings in numba, rocket_fft
 
     keys = ("xi3_nodes", "F3_nodes", "q_nodes", "A1_nodes", "A2_nodes", "mu_values", "rf_label", "rf_law", "rf_n",
             "rf_s", "rf_mu", "rf_slope")

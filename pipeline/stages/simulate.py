@@ -7,20 +7,22 @@ simulate.png (F2, F3 over the final stretch and the F2 spectrum).
 from __future__ import annotations
 
 import logging
+import time
 
 import numpy as np
 
 from pipeline.store import artifacts, paths
 from pipeline.progress import loop_time
 from pipeline.store.atomic import save_figure
+from pipeline.stages.greens import greens_inputs
+from pipeline.config.case import loop_arguments, resolve_case
 
 log = logging.getLogger("pipeline.simulate")
 
 
 def simulate_config(case: str):
     """(case, contact config, greens config, this stage's config)."""
-    from pipeline.stages.contact import contact_inputs
-    from pipeline.stages.greens import greens_inputs
+    from pipeline.stages.contact import contact_inputs  # lazy: brings in numba, rocket_fft, scipy
 
     c, _, _, ccfg = contact_inputs(case)
     gcfg = greens_inputs(case)[-1]
@@ -31,7 +33,7 @@ def simulate_config(case: str):
 def case_arrays(case: str):
     """(case, this stage's config, contact arrays, greens arrays, WheelModes) of a case, each artifact
     checked against the case's configuration (the simulate and stability stages' inputs)."""
-    from solvers.timeloop.interaction import WheelModes
+    from solvers.timeloop.interaction import WheelModes  # lazy: brings in numba, rocket_fft, scipy
 
     c, ccfg, gcfg, cfg = simulate_config(case)
     out = paths.case_dir(case)
@@ -41,11 +43,8 @@ def case_arrays(case: str):
 
 
 def run_simulate(case: str) -> dict:
-    import time
+    from solvers.timeloop.interaction import contact_model, simulate  # lazy: brings in numba, rocket_fft, scipy
 
-    from solvers.timeloop.interaction import contact_model, simulate
-
-    from pipeline.config.case import loop_arguments, resolve_case
 
     t0 = time.perf_counter()
     c, cfg, con, gr, wheel = case_arrays(case)
@@ -53,7 +52,7 @@ def run_simulate(case: str) -> dict:
     out = paths.case_dir(case)
     cm = contact_model(con, rc.friction)
     if c["contact"].get("points", 1) == 2:  # [contact] points = 2: the two-point loop (pipeline/stages/simulate_two_point.py)
-        from pipeline.stages.simulate_two_point import simulate_two_point_case
+        from pipeline.stages.simulate_two_point import simulate_two_point_case  # here: Make's DEPS of the module's other entry points stay without it
 
         return simulate_two_point_case(case, c, con, gr, cm, wheel, cfg, plot_forces, t0)
     res = simulate(wheel, gr["rail_kernel"], cm, **loop_arguments(rc, con).simulate(store_every=10))
@@ -76,6 +75,6 @@ def run_simulate(case: str) -> dict:
 
 def plot_forces(res, m: dict, path, case: str) -> None:
     """``postprocess.plots.simulate.forces_figure``, saved atomically to ``path``."""
-    from postprocess.plots.simulate import forces_figure
+    from postprocess.plots.simulate import forces_figure  # here: Make's DEPS of the module's other entry points stay without it
 
     save_figure(forces_figure(res, m, case), path, dpi=90)

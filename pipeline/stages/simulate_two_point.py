@@ -13,8 +13,13 @@ are those of the summed tangential-lateral forces of both patches (each in its c
 from __future__ import annotations
 
 import math
+import logging
+import time
 
 import numpy as np
+from pipeline.config.case import loop_arguments, resolve_case
+from pipeline.store import artifacts, paths
+from pipeline.progress import loop_time
 
 
 def second_creepages(c: dict, con) -> tuple[float, float]:
@@ -32,9 +37,9 @@ def second_creepages(c: dict, con) -> tuple[float, float]:
 def second_point(c: dict, con, gr, friction):
     """(SecondPoint, rail blocks) of a two-point case from its contact and greens arrays (``friction``:
     the case's resolved FrictionLaw)."""
-    from solvers.timeloop.two_point_driver import SecondPoint
+    from solvers.timeloop.two_point_driver import SecondPoint  # lazy: brings in numba, rocket_fft, scipy
 
-    from pipeline.stages.second_point import second_contact_model
+    from pipeline.stages.second_point import second_contact_model  # lazy: brings in scipy
 
     gx_b, gy_b = second_creepages(c, con)
     profiles = c["contact"].get("angle", "none") != "none"
@@ -47,9 +52,8 @@ def second_point(c: dict, con, gr, friction):
 
 def run_two_point(rc, con, gr, cm, wheel, store_every: int = 10):
     """(TwoPointResult, simulate.npz arrays) of a two-point case (``rc``: its ResolvedCase)."""
-    from solvers.timeloop.two_point_driver import simulate_two
+    from solvers.timeloop.two_point_driver import simulate_two  # lazy: brings in numba, rocket_fft, scipy
 
-    from pipeline.config.case import loop_arguments
 
     second, blocks = second_point(rc.case, con, gr, rc.friction)
     gx_b, gy_b = second.gamma_x, second.gamma_y
@@ -72,15 +76,8 @@ def simulate_two_point_case(case: str, c: dict, con, gr, cm, wheel, cfg: dict, p
     """The simulate stage of a two-point case: run, plot the first point's forces (``plot_forces``: the
     simulate stage's, which a verdict without figures replaces), save, log (``t0``: the stage's start,
     ``time.perf_counter``)."""
-    import logging
-    import time
-
-    from pipeline.store import artifacts, paths
-    from pipeline.progress import loop_time
-
     t0 = time.perf_counter() if t0 is None else t0
 
-    from pipeline.config.case import resolve_case
 
     res, arrays = run_two_point(resolve_case(case), con, gr, cm, wheel)
     if "contact_angle_wheel" in gr:
@@ -100,9 +97,8 @@ def simulate_two_point_case(case: str, c: dict, con, gr, cm, wheel, cfg: dict, p
 
 def two_point_roots(rc, con, gr, wheel, cm) -> list:
     """The two-point screen's wheel roots of a case (``rc``: its ResolvedCase; ``solvers.stability.two_point``)."""
-    from solvers.stability.two_point import linearise_two, wheel_roots
+    from solvers.stability.two_point import linearise_two, wheel_roots  # lazy: brings in numba
 
-    from pipeline.config.case import loop_arguments
 
     second, blocks = second_point(rc.case, con, gr, rc.friction)
     args = loop_arguments(rc, con).two_point()

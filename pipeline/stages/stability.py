@@ -18,6 +18,11 @@ import numpy as np
 
 from pipeline.store import artifacts, paths
 from pipeline.store.atomic import save_figure
+from pipeline.config.case import loop_arguments, resolve_case
+from pipeline.stages.simulate import case_arrays, simulate_config
+from pipeline.caches.friction_curves import with_curves
+from postprocess.plots.stability import screen_figure
+from pipeline.stages.simulate_two_point import two_point_roots
 
 log = logging.getLogger("pipeline.stability")
 
@@ -25,11 +30,9 @@ log = logging.getLogger("pipeline.stability")
 def case_linear_model(case: str, mu: float | None = None, gamma_y: float | None = None):
     """(case dict, LinearModel, mode labels, modes' open-loop frequencies) of a case, optionally at
     another friction coefficient or creepage than the case's."""
-    from solvers.timeloop.interaction import contact_model
-    from solvers.stability.screen import linearise
+    from solvers.timeloop.interaction import contact_model  # lazy: brings in numba, rocket_fft, scipy
+    from solvers.stability.screen import linearise  # lazy: brings in numba
 
-    from pipeline.config.case import loop_arguments, resolve_case
-    from pipeline.stages.simulate import case_arrays
 
     c, _, con, gr, wheel = case_arrays(case)
     rc = resolve_case(case)
@@ -38,8 +41,6 @@ def case_linear_model(case: str, mu: float | None = None, gamma_y: float | None 
     if mu is None:
         mu = rc.friction
     else:
-        from pipeline.caches.friction_curves import with_curves
-
         con = with_curves(case, con, [mu])
     args = loop_arguments(rc, con).linearise(**({} if gamma_y is None else {"gamma_y": gamma_y}))
     lm = linearise(wheel, gr["rail_kernel"], contact_model(con, mu), **args)
@@ -47,9 +48,8 @@ def case_linear_model(case: str, mu: float | None = None, gamma_y: float | None 
 
 
 def run_stability(case: str) -> dict:
-    from solvers.stability.screen import screen
+    from solvers.stability.screen import screen  # lazy: brings in numba
 
-    from pipeline.stages.simulate import simulate_config
 
     t0 = time.perf_counter()
     c, lm, labels, f_open = case_linear_model(case)
@@ -79,18 +79,13 @@ def run_stability(case: str) -> dict:
 
 def plot_screen(a: dict, path, case: str, c: dict) -> None:
     """``postprocess.plots.stability.screen_figure``, saved atomically to ``path``."""
-    from postprocess.plots.stability import screen_figure
-
     save_figure(screen_figure(a, case, c), path, dpi=100)
 
 
 def case_two_point_roots(case: str) -> list:
     """The two-point screen's wheel roots of a case from its artifacts (``simulate_two_point.two_point_roots``)."""
-    from solvers.timeloop.interaction import contact_model
+    from solvers.timeloop.interaction import contact_model  # lazy: brings in numba, rocket_fft, scipy
 
-    from pipeline.config.case import resolve_case
-    from pipeline.stages.simulate import case_arrays
-    from pipeline.stages.simulate_two_point import two_point_roots
 
     c, _, con, gr, wheel = case_arrays(case)
     rc = resolve_case(case)

@@ -15,17 +15,16 @@ import logging
 import time
 
 import numpy as np
+from pipeline.numba_setup import skip_special
 
 log = logging.getLogger("pipeline.stages.warm")
 
 
 def warm() -> float:
     """Compile (or load) the time loop; returns the wall time [s]."""
-    from pipeline.numba_setup import skip_special
-
     skip_special()
-    from solvers.contact.friction import monotone_slopes
-    from solvers.timeloop.interaction import ContactModel, WheelModes, simulate
+    from solvers.contact.friction import monotone_slopes  # lazy: brings in numba, rocket_fft, scipy
+    from solvers.timeloop.interaction import ContactModel, WheelModes, simulate  # lazy: brings in numba, rocket_fft, scipy
 
     t0 = time.perf_counter()
     xs = np.linspace(0.0, 2e-4, 41)                                # Hertz: F3 = K xi3^1.5, q = F3^(2/3)

@@ -15,27 +15,28 @@ import os
 import time
 from concurrent.futures import ProcessPoolExecutor
 from multiprocessing import get_context
+import csv
 
 import numpy as np
 
 from pipeline.store import artifacts, paths
 from pipeline.config.loader import load_geometry
 from pipeline.config.input_schemas import WHEEL
+from geometry.wheel import wheel_segments, tyre_inner_radius, web_centreline
+from pipeline.store.atomic import save_figure, save_image
+from pathlib import Path
 
 log = logging.getLogger("pipeline.wheel")
 
 
 def load_wheel(name: str) -> tuple[dict, str]:
     """Validated wheel parameters (geometry checked too) and the file path."""
-    from geometry.wheel import wheel_segments
-
     path = paths.wheel_file(name)
     return load_geometry(path, WHEEL, wheel_segments, "wheel", paths.available(paths.wheels())), str(path)
 
 
 def run_mesh(name: str) -> None:
-    from geometry.mesher import mesh_section
-    from geometry.wheel import wheel_segments
+    from geometry.mesher import mesh_section  # here: Make's DEPS of the module's other entry points stay without it
 
     p, src = load_wheel(name)
     out = paths.wheel_dir(name)
@@ -49,7 +50,7 @@ def run_mesh(name: str) -> None:
 
 
 def _msh_counts(path) -> dict:
-    import gmsh
+    import gmsh  # lazy: brings in gmsh
 
     gmsh.initialize()
     try:
@@ -63,8 +64,8 @@ def _msh_counts(path) -> dict:
 
 
 def _solver(p: dict, names: dict, msh: str):
-    from geometry.mesher import read_msh
-    from solvers.wheel.axisym import HarmonicSolver, SpringSupport
+    from geometry.mesher import read_msh  # here: Make's DEPS of the module's other entry points stay without it
+    from solvers.wheel.axisym import HarmonicSolver, SpringSupport  # here: Make's DEPS of the module's other entry points stay without it
 
     mesh, _, ft = read_msh(msh)
     m = p["material"]
@@ -114,9 +115,8 @@ def solve_all(p: dict, names: dict, msh: str, workers: int | None = None, progre
 def modal_model(p: dict, results, pts, cells) -> dict:
     """Classify the flexible modes, add the rigid half wheelset, and pack
     the arrays of the modal artifact (sorted by frequency)."""
-    from geometry.wheel import tyre_inner_radius, web_centreline
-    from solvers.wheel.mode_labels import classify_modes, order_nodal_circles
-    from solvers.wheel.wheelset import rigid_modes
+    from solvers.wheel.mode_labels import classify_modes, order_nodal_circles  # here: Make's DEPS of the module's other entry points stay without it
+    from solvers.wheel.wheelset import rigid_modes  # here: Make's DEPS of the module's other entry points stay without it
 
     tyre = pts[:, 0] > tyre_inner_radius(p, pts[:, 1] - p["axle"]["rolling_circle_z"]) - 1e-9
     line = web_centreline(p)
@@ -146,7 +146,7 @@ def modal_model(p: dict, results, pts, cells) -> dict:
 
 
 def run_modes(name: str, workers: int | None = None) -> dict:
-    from pipeline.progress import progress
+    from pipeline.progress import progress  # here: Make's DEPS of the module's other entry points stay without it
 
     p, _ = load_wheel(name)
     out = paths.wheel_dir(name)
@@ -173,8 +173,8 @@ def run_modes(name: str, workers: int | None = None) -> dict:
 def _boundary_nodes(pts, cells, msh, tag) -> np.ndarray:
     """Indices of the output nodes on the physical curve ``tag`` (matched by
     coordinates to the Gmsh nodes of that group)."""
-    import gmsh
-    from scipy.spatial import cKDTree
+    import gmsh  # lazy: brings in gmsh
+    from scipy.spatial import cKDTree  # lazy: brings in scipy
 
     gmsh.initialize()
     try:
@@ -189,11 +189,10 @@ def _boundary_nodes(pts, cells, msh, tag) -> np.ndarray:
 
 def run_shapes(name: str) -> None:
     """One PNG per mode (3D wheel, swept section) and a gallery."""
-    from postprocess.modes.geometry import boundary_edges_from_triangles
-    from postprocess.modes.shapes import gallery_figure, render_mode
+    from postprocess.modes.geometry import boundary_edges_from_triangles  # lazy: brings in pyvista
+    from postprocess.modes.shapes import gallery_figure, render_mode  # lazy: brings in pyvista
 
-    from pipeline.store.atomic import save_figure, save_image
-    from pipeline.progress import progress
+    from pipeline.progress import progress  # here: Make's DEPS of the module's other entry points stay without it
 
     p, _ = load_wheel(name)
     out = paths.wheel_dir(name)
@@ -216,10 +215,7 @@ def run_shapes(name: str) -> None:
 def modes_for_parameters(p: dict, workdir, workers: int | None = None) -> dict:
     """Mesh and solve a wheel given as validated parameters, without touching
     the build folder (for studies, validation and benchmarks)."""
-    from pathlib import Path
-
-    from geometry.mesher import mesh_section
-    from geometry.wheel import wheel_segments
+    from geometry.mesher import mesh_section  # here: Make's DEPS of the module's other entry points stay without it
 
     Path(workdir).mkdir(parents=True, exist_ok=True)
     msh = str(Path(workdir) / "section.msh")
@@ -230,7 +226,5 @@ def modes_for_parameters(p: dict, workdir, workers: int | None = None) -> dict:
 
 def reference_rows(path) -> list[tuple[float, int, int, str]]:
     """(f_hz, n, m, class) rows of a reference mode table (CSV with a header)."""
-    import csv
-
     with open(path, newline="") as fh:
         return [(float(r["f_hz"]), int(r["n"]), int(r["m"]), r["class"]) for r in csv.DictReader(fh)]

@@ -19,6 +19,7 @@ import secrets
 import signal
 from pathlib import Path
 from typing import Iterator
+import sys
 
 __all__ = ["atomic_write", "save_figure", "save_image", "save_text"]
 
@@ -128,8 +129,6 @@ def save_figure(fig, path: str | os.PathLike, **savefig_kw) -> Path:
     """Write a matplotlib figure atomically (``fig.savefig(tmp, **savefig_kw)``),
     then close it (pyplot figures are released; a figure made without pyplot needs nothing, and
     pyplot is not imported for it).  Returns the path."""
-    import sys
-
     try:
         with atomic_write(path) as tmp:
             fig.savefig(tmp, **savefig_kw)
@@ -142,7 +141,7 @@ def save_figure(fig, path: str | os.PathLike, **savefig_kw) -> Path:
 def save_image(image, path: str | os.PathLike) -> Path:
     """Write an (H, W, 3 or 4) uint8 image array as PNG atomically (PIL, the
     writer pyvista's screenshots use).  Returns the path."""
-    from PIL import Image
+    from PIL import Image  # lazy: brings in PIL
 
     with atomic_write(path) as tmp:
         Image.fromarray(image).save(tmp, format="PNG")

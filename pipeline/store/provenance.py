@@ -12,10 +12,14 @@ import subprocess
 from datetime import datetime, timezone
 from pathlib import Path
 from typing import Mapping
+import sys
+import json
 
 import numpy as np
 
 from pipeline.config.loader import config_hash
+from pipeline.store import paths
+from pipeline.store.atomic import save_text
 
 #: Root of the git work tree whose revision is recorded (this repository).
 _REPO_ROOT = Path(__file__).resolve().parents[2]
@@ -107,9 +111,8 @@ def _installation_key() -> str:
     """What the versions depend on, read without importing the libraries: the interpreter, the
     installed distributions' versions and the locations and times of the modules (a changed
     installation changes the key)."""
-    import importlib.metadata
-    import importlib.util
-    import sys
+    import importlib.metadata  # local: the module binds importlib otherwise
+    import importlib.util  # local: the module binds importlib otherwise
 
     parts = [sys.executable, sys.version]
     for dist in _DISTRIBUTIONS:
@@ -136,10 +139,6 @@ def library_versions() -> dict[str, str]:
     and SLEPc only to read their versions costs a second or two per stage, so the versions are
     read once per installation (``_installation_key``) and kept in
     ``$SQUEAL_BUILD_DIR/.library_versions.json``; without a usable cache they are imported."""
-    import json
-
-    from pipeline.store import paths
-
     cache = paths.build() / ".library_versions.json"
     key = _installation_key()
     try:
@@ -150,8 +149,6 @@ def library_versions() -> dict[str, str]:
         pass
     versions = _import_versions()
     try:
-        from pipeline.store.atomic import save_text
-
         cache.parent.mkdir(parents=True, exist_ok=True)
         save_text(json.dumps({"key": key, "versions": versions}), cache)
     except OSError:

@@ -14,13 +14,12 @@ import numpy as np
 
 from pipeline.store import artifacts, paths
 from pipeline.config.case import resolve_case
+from solvers.study import nearest_mode
 
 LF_HZ = 200.0
 
 
 def _time_loop_mode(f: float, f_modes, labels) -> str:
-    from solvers.study import nearest_mode
-
     if not np.isfinite(f):
         return ""
     if f < LF_HZ:

@@ -5,24 +5,21 @@ file.  One line per problem (file, key or line and column, value, what is allowe
 from __future__ import annotations
 
 import sys
+from pipeline.study.definition import load_study
+from pipeline.study.line_input import check
+from pipeline.config.loader import ConfigError
 
 
 def check_study(name: str) -> str:
     """A one-line summary of a valid study; ConfigError otherwise."""
-    from pipeline.study.definition import load_study
-
     spec, src = load_study(name)
     if spec["kind"] == "line":
-        from pipeline.study.line_input import check
-
         rows = check(spec)
         return f"{src}: ok (line study, {len(rows)} curves from {spec['curves']})"
     return f"{src}: ok ({spec['kind']} study)"
 
 
 def main(argv=None) -> int:
-    from pipeline.config.loader import ConfigError
-
     args = sys.argv[1:] if argv is None else argv
     if len(args) != 1:
         print("usage: python -m pipeline.study.check <study>", file=sys.stderr)

@@ -29,6 +29,12 @@ from pipeline.config.loader import config_hash
 from pipeline.study.results_table import ResultsTable
 from pipeline.study.runner import Task, pending, run_tasks
 from pipeline.study.tasks import CreepageTask, ModeTask, Simulation
+from solvers.study import single_mode_damping, relative_difference
+from pipeline.stages.radiate import load_radiation_model
+from pipeline.study.context import load_context
+from postprocess.plots.study import contact_modes_figure, creepage_figure
+from pipeline.store.artifacts import save_csv
+from pipeline.store.atomic import save_figure, save_text
 
 log = logging.getLogger("pipeline.study")
 
@@ -48,11 +54,7 @@ def selected_modes(spec: dict, ctx, quick: bool) -> list[int]:
 
 
 def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool = True) -> dict:
-    from solvers.study import single_mode_damping
-
-    from pipeline.stages.radiate import load_radiation_model
-    from pipeline.study.context import load_context
-    from pipeline.study.worker import contact_case
+    from pipeline.study.worker import contact_case  # lazy: brings in numba, rocket_fft, scipy
 
     sim, mset, cr = spec["simulation"], spec["modes"], spec["creepage"]
     duration = spec["quick"]["duration"] if quick else sim["duration"]
@@ -94,8 +96,6 @@ def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool 
 
 def paired(rows: list, part: str, by: str) -> list[dict]:
     """Point and Kalker rows of one part side by side, keyed by ``by`` ('mode' or 'f')."""
-    from solvers.study import relative_difference
-
     out = {}
     for r in rows:
         if r["part"] == part:
@@ -132,11 +132,6 @@ def _f(x, fmt: str) -> str:
 
 
 def write_outputs(spec, src, out: Path, quick, contexts, tasks, table, duration) -> None:
-    from postprocess.plots.study import contact_modes_figure, creepage_figure
-
-    from pipeline.store.artifacts import save_csv
-    from pipeline.store.atomic import save_figure, save_text
-
     rows = [table.rows[t.key] for t in tasks if t.key in table.rows]
     modes = paired(rows, "mode", "mode")
     creep = paired(rows, "creepage", "f")

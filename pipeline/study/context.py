@@ -17,6 +17,9 @@ from pipeline.store import artifacts, paths
 from pipeline.store.code_hash import code_key
 from pipeline.config.case import LoopArguments, loop_arguments, resolve_case
 from pipeline.config.loader import config_hash
+from pipeline.caches.friction_curves import with_curves
+from pipeline.stages.greens import greens_inputs
+from pipeline.stages.radiate import load_radiation_model
 
 # the functions that compute a study's rows, and the context they run in (its objects' methods run in the
 # rows: the case's friction law, for one): the code they reach is hashed into a row's inputs
@@ -73,9 +76,7 @@ def load_context(case: str, *, radiation: bool = True, zeta_overrides: dict | No
     {mode: zeta} only for the radiation model (the simulation's damping is set per task).  ``mus``:
     the friction coefficients the study runs besides the case's own; their curves are built on the
     case's contact (``pipeline.caches.friction_curves.with_curves``, cached by value)."""
-    from pipeline.stages.contact import contact_inputs
-    from pipeline.caches.friction_curves import with_curves
-    from pipeline.stages.greens import greens_inputs
+    from pipeline.stages.contact import contact_inputs  # lazy: brings in numba, rocket_fft, scipy
 
     c, _, _, ccfg = contact_inputs(case)
     _, _, _, modes, _, gcfg = greens_inputs(case)      # the wheel modes, checked against the wheel file
@@ -88,7 +89,6 @@ def load_context(case: str, *, radiation: bool = True, zeta_overrides: dict | No
                                       f"{paths.wheel_dir(c['wheel']) / 'modes.npz'}; run `make greens CASE={case}`")
     wheel = {"f": gr["wheel_f"], "mass": gr["wheel_mass"], "zeta": gr["wheel_zeta"], "phi": gr["wheel_phi"],
              "n": modes["n"], "m": modes["m"], "cls": modes["cls"].astype(str), "kind": modes["kind"].astype(str)}
-    from pipeline.stages.radiate import load_radiation_model
 
     model = load_radiation_model(case, zeta_overrides) if radiation else None
     note = "" if radiation else "not requested"

@@ -20,6 +20,11 @@ from pipeline.study.results_table import ResultsTable
 from pipeline.progress import progress as progress_bar
 from pipeline.study.runner import Task, pending, run_tasks
 from pipeline.study.tasks import DampingTask, Simulation
+from solvers.study import Outcome, damping_procedure
+from pipeline.study.context import load_context
+from postprocess.plots.study import damping_figure
+from pipeline.store.artifacts import save_csv
+from pipeline.store.atomic import save_figure, save_text
 
 log = logging.getLogger("pipeline.study")
 
@@ -36,10 +41,7 @@ def operating(spec: dict, ctx) -> tuple[float, float]:
 
 
 def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool = True) -> dict:
-    from solvers.study import Outcome, damping_procedure
-
-    from pipeline.study.context import load_context
-    from pipeline.study.worker import damping_case
+    from pipeline.study.worker import damping_case  # lazy: brings in numba, rocket_fft, scipy
 
     case = spec["cases"][0]
     ctx = load_context(case, radiation=False, mus=[m for m in [spec["operating"]["mu"]] if m is not None])
@@ -86,11 +88,6 @@ def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool 
 
 
 def write_outputs(spec, src, out: Path, quick, ctx, mu, gamma_y, bis, result, rows) -> None:
-    from postprocess.plots.study import damping_figure
-
-    from pipeline.store.artifacts import save_csv
-    from pipeline.store.atomic import save_figure, save_text
-
     level = spec["simulation"]["squeal_level"]
     steps = []
     for s in result.steps:

@@ -20,9 +20,11 @@ from pathlib import Path
 from pipeline.store import paths
 from pipeline.config.loader import config_hash
 from pipeline.study.line_input import LineRow, line_curves, read_rows
-from pipeline.study.line_worker import LineContext, LineTask, band_columns
+from pipeline.study.line_worker import LineContext, LineTask, band_columns, line_case, prepare_worker
 from pipeline.study.results_table import ResultsTable
 from pipeline.study.runner import Task, pending, run_tasks
+from pipeline.store.code_hash import code_key
+from pipeline.study.line_outputs import write_outputs
 
 log = logging.getLogger("pipeline.study")
 
@@ -48,8 +50,6 @@ def selected(spec: dict, quick: bool) -> list[LineRow]:
 
 def inputs_hash(spec: dict, curve_text: str, curve) -> str:
     """What a row's result depends on: its curve file, the vehicle, wheel and rail files, the code."""
-    from pipeline.store.code_hash import code_key
-
     files = [curve.vehicle.source, paths.wheel_file(curve.wheel), paths.rail_file(curve.rail)]
     return config_hash({"curve": curve_text, "files": [f.read_text() if f.exists() else "" for f in files],
                         "code": code_key(*ROW_FUNCTIONS, ignore_docs=True), "what_ifs": spec["what_ifs"],
@@ -69,8 +69,6 @@ def row_inputs(row: LineRow) -> dict:
 
 
 def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool = True) -> dict:
-    from pipeline.study.line_outputs import write_outputs
-
     rows = selected(spec, quick)
     folder = out / "curves"
     tasks = tasks_of(spec, rows, folder)
@@ -79,8 +77,6 @@ def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool 
     todo = pending(tasks, table)
     stats = {"total": len(tasks), "done_before": len(tasks) - len(todo), "submitted": len(todo)}
     if todo:
-        from pipeline.study.line_worker import line_case, prepare_worker
-
         dask = client.get()
         dask.run(prepare_worker)
         r = run_tasks(tasks, line_case, table, dask, {"line": LineContext(spec["what_ifs"], spec["wheel_figures"])},

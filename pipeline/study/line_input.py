@@ -39,6 +39,8 @@ from pipeline.store import paths
 from pipeline.config.loader import ConfigError, Field, validate
 from pipeline.config.curve_schemas import CURVE
 from pipeline.config.nouns import Curve
+from pipeline.config.curve_inputs import curve_path, is_path, available_vehicles, curve_of, read_vehicle
+from pipeline.store.atomic import save_text
 
 COLUMNS = ("id", "chainage_m", "radius_m", "cant_mm", "length_m", "speed_kmh", "vehicle", "friction")
 NUMERIC = {
@@ -98,16 +100,12 @@ def curves_file(spec: dict) -> Path:
 
 def base_curve_file(spec: dict) -> Path:
     """The base curve: a shipped name, or a path relative to the study folder (or absolute)."""
-    from pipeline.config.curve_inputs import curve_path, is_path
-
     base = spec["base_curve"]
     return paths.studies() / Path(base).expanduser() if is_path(base) else curve_path(base)
 
 
 def read_rows(spec: dict, path: Path | None = None) -> list[LineRow]:
     """The validated rows of the study's CSV (module notes); a ConfigError lists every problem."""
-    from pipeline.config.curve_inputs import available_vehicles
-
     path = Path(path or curves_file(spec))
     if not path.exists():
         raise ConfigError(str(paths.study_file(spec["name"])), [("curves", spec["curves"], f"a CSV file in "
@@ -213,9 +211,6 @@ def line_curves(spec: dict, rows: list[LineRow], folder: Path) -> dict[str, tupl
     """{row key: (its Curve, its curve file's text)}: each row's curve built in memory (module notes),
     its vehicle looked up beside the CSV first, and its curve file written into ``folder`` as a record
     (unchanged files untouched)."""
-    from pipeline.config.curve_inputs import curve_of, read_vehicle
-    from pipeline.store.atomic import save_text
-
     folder.mkdir(parents=True, exist_ok=True)
     beside = curves_file(spec).parent
     vehicles, out = {}, {}

@@ -10,6 +10,11 @@ import numpy as np
 from pipeline.store import paths
 from pipeline.study.line_rules import AGREE_QUIET, AGREE_SQUEAL, MISSED, OVER, RULES, SOURCES, TITLES, rule_columns
 from pipeline.study.line_worker import band_columns
+from postprocess.exports import lw_railway_columns, lw_railway_record
+from pipeline.store.artifacts import save_csv
+from postprocess.plots.line import chainage_figure, level_radius_figure
+from pipeline.store.atomic import save_figure, save_text
+from pipeline.curve.verdict_report import cell
 
 OUT_COLUMNS = ["id", "chainage_m", "radius_m", "cant_mm", "length_m", "speed_kmh", "vehicle", "friction", "mu",
                "squeals", "wheel", "f_squeal", "mode", "L_pA", "L_W", "L_F2", "squealing_wheels", "unstable_wheels",
@@ -37,10 +42,6 @@ def write_export(spec: dict, out: Path, rows: list[dict]) -> tuple[Path, int]:
     """lw_railway.csv: one LW_RAILWAY row (``postprocess.exports``) per squealing row, its loudest wheel's
     band L_W at the row's speed and the study's passages per hour; lw_railway_sections.csv maps its
     PK_SECTION to the row.  An empty table (header only) when nothing squeals."""
-    from postprocess.exports import lw_railway_columns, lw_railway_record
-
-    from pipeline.store.artifacts import save_csv
-
     e = spec["export"]
     flows = {"D": e["passages_day"], "E": e["passages_evening"], "N": e["passages_night"]}
     bands = band_columns()
@@ -133,12 +134,6 @@ def markdown(spec: dict, src: str, quick: bool, every: list[dict], total: int, n
 
 
 def write_outputs(spec: dict, src: str, out: Path, quick: bool, line_rows, done) -> None:
-    from postprocess.plots.line import chainage_figure, level_radius_figure
-
-    from pipeline.store.artifacts import save_csv
-    from pipeline.store.atomic import save_figure, save_text
-    from pipeline.curve.verdict_report import cell
-
     every = full_rows([r for r in done if r is not None])
     rows = [r for r in every if not r.get("note")]
     cols = OUT_COLUMNS + band_columns()

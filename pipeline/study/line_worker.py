@@ -11,10 +11,17 @@ from __future__ import annotations
 import math
 import os
 from dataclasses import dataclass
+import signal
+import threading
 
 import numpy as np
 
 from pipeline.config.nouns import Curve
+from postprocess.exports import NM_BANDS_HZ, band_power, level, nm_band_levels
+from pipeline.store import paths
+from pipeline.curve.verdict_report import loudest
+from pipeline.curve.screen_first import run_screen_first
+from pipeline.config.loader import ConfigError
 
 NAN = float("nan")
 
@@ -36,17 +43,11 @@ class LineTask:
 
 
 def band_columns() -> list[str]:
-    from postprocess.exports import NM_BANDS_HZ
-
     return [f"L_W_{f}Hz" for f in NM_BANDS_HZ]
 
 
 def band_levels(case: str) -> np.ndarray:
     """L_W (dB re 1 pW) per NoiseModelling band of a squealing wheel's radiate.npz."""
-    from postprocess.exports import band_power, level, nm_band_levels
-
-    from pipeline.store import paths
-
     with np.load(paths.case_dir(case) / "radiate.npz", allow_pickle=False) as a:
         f, W = np.asarray(a["f"], float), np.asarray(a["W"], float)
     bands, per, _ = band_power(f, W)
@@ -55,8 +56,6 @@ def band_levels(case: str) -> np.ndarray:
 
 def summary_row(curve: str, rows: list[dict]) -> dict:
     """The line's row of one curve verdict (module notes)."""
-    from pipeline.curve.verdict_report import loudest
-
     loud = loudest(rows)
     out = {"curve": curve, "squeals": loud is not None,
            "unstable_wheels": " ".join(r["wheel"] for r in rows if math.isfinite(r["screen_sigma"])),
@@ -78,15 +77,10 @@ class _MainThreadSignal:
     the handler is left as it is: gmsh sets SIGINT to its default while it runs, so that Ctrl-C stops it)."""
 
     def __getattr__(self, name):
-        import signal
-
         return getattr(signal, name)
 
     @staticmethod
     def signal(num, handler):
-        import signal
-        import threading
-
         if threading.current_thread() is threading.main_thread():
             return signal.signal(num, handler)
         return signal.getsignal(num)
@@ -95,7 +89,7 @@ class _MainThreadSignal:
 def thread_safe_gmsh() -> None:
     """Let gmsh (Debian's 4.8 module) be imported, initialised and finalised in a worker's task thread:
     its module-level ``signal`` replaced by ``_MainThreadSignal`` (call in the main thread)."""
-    import gmsh
+    import gmsh  # lazy: brings in gmsh
 
     gmsh.signal = _MainThreadSignal()
 
@@ -109,10 +103,6 @@ def prepare_worker() -> int:
 
 def line_case(ctx: LineContext, t: LineTask) -> dict:
     """The worker's function (``pipeline.study.runner``): the curve's screen-first verdict, summarised."""
-    from pipeline.curve.screen_first import run_screen_first
-
-    from pipeline.config.loader import ConfigError
-
     try:
         res = run_screen_first(t.curve, what_ifs=ctx.what_ifs, figures=ctx.figures)
     except ConfigError as e:                           # no steady curving, or a wheel outside a case's range

@@ -18,6 +18,11 @@ from pipeline.study.results_table import ResultsTable
 from pipeline.study.runner import Task, pending, run_tasks
 from pipeline.study.definition import grid_of, load_study
 from pipeline.study.tasks import MapTask, Simulation
+from pipeline.study.screen import screen_rows
+from pipeline.study.context import load_context
+from postprocess.plots.study import map_figure, mode_categories
+from pipeline.store.artifacts import save_csv
+from pipeline.store.atomic import save_figure, save_text
 
 log = logging.getLogger("pipeline.study")
 
@@ -42,7 +47,6 @@ def screened(spec: dict, quick: bool) -> dict:
     study sets simulation.screen_margin; else {}."""
     if spec["simulation"].get("screen_margin") is None:
         return {}
-    from pipeline.study.screen import screen_rows
 
     gammas, mus = grid_of(spec, quick)
     return {case_key(r["case"], r["gamma_y"], r["mu"]): r["sigma_max"]
@@ -67,8 +71,7 @@ def tasks_of(spec: dict, src: str, contexts: dict, quick: bool) -> list[Task]:
 
 
 def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool = True) -> dict:
-    from pipeline.study.context import load_context
-    from pipeline.study.worker import map_case
+    from pipeline.study.worker import map_case  # lazy: brings in numba, rocket_fft, scipy
 
     gammas, mus = grid_of(spec, quick)
     lines = 0                                        # the table's lines so far (a header and a row per case)
@@ -104,11 +107,6 @@ def fields_of(rows: dict, case: str, gammas, mus) -> dict:
 
 
 def write_outputs(spec, src, out: Path, quick: bool, contexts: dict, tasks: list, table: ResultsTable) -> None:
-    from postprocess.plots.study import map_figure
-
-    from pipeline.store.artifacts import save_csv
-    from pipeline.store.atomic import save_figure, save_text
-
     gammas, mus = grid_of(spec, quick)
     level = spec["simulation"]["squeal_level"]
     keys = [t.key for t in tasks]
@@ -170,8 +168,6 @@ def write_outputs(spec, src, out: Path, quick: bool, contexts: dict, tasks: list
 def lw_table(F: dict, gammas, mus, level: float, modes) -> str:
     """The sound power over the grid: L_W (dB re 1e-12 W) and the squealing mode where the case
     squeals (the wheelset's oscillations below 200 Hz marked 'LF'), blank otherwise."""
-    from postprocess.plots.study import mode_categories
-
     cat, names = mode_categories(F, *modes, level)
     lines = ["L_W (dB re 1e-12 W) and the squealing mode (LF: the wheelset's oscillation below 200 Hz, not "
              "squeal):\n", "| gamma_y \\ mu | " + " | ".join(f"{m:g}" for m in mus) + " |", "|---:|" + "---:|" * len(mus)]

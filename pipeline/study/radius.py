@@ -25,6 +25,13 @@ import sys
 from pathlib import Path
 
 import numpy as np
+from pipeline.store import paths
+from pipeline.config.curve_inputs import curve_name
+from pipeline.curve.curvefiles import radius_curve
+from pipeline.curve.stage import read_verdict, run_curve
+from pipeline.store.atomic import save_figure, save_text
+from pipeline.config.loader import ConfigError
+from pipeline.progress import progress
 
 RADII = (50.0, 75.0, 100.0, 150.0, 200.0, 300.0, 500.0, 1000.0)
 V_MAX = 70.0             # km/h, metro line speed
@@ -78,10 +85,10 @@ def summarise(R: float, V: float, cant: float, verdict_rows: list[dict]) -> dict
 
 
 def figure(rows: list[dict]):
-    import matplotlib
+    import matplotlib  # lazy: brings in matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: brings in matplotlib
 
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(10, 3.8))
     R = np.array([r["R"] for r in rows])
@@ -109,11 +116,6 @@ def curve_verdict(base: str, folder: Path, radius: float, speed_kmh: float | Non
     """The verdict rows of the base curve's vehicle at ``radius`` (speed: given, or the design rule's;
     cant: the design rule's), from build/curves/<name>/verdict.csv when it is newer than its curve
     file (``reuse``), else by running the curve stage.  {'name', 'R', 'V', 'cant', 'rows'}."""
-    from pipeline.store import paths
-    from pipeline.config.curve_inputs import curve_name
-    from pipeline.curve.curvefiles import radius_curve
-    from pipeline.curve.stage import read_verdict, run_curve
-
     V, cant = design(radius)
     V = V if speed_kmh is None else float(speed_kmh)
     curve = radius_curve(base, folder, radius, V, cant, name=f"{curve_name(base)}-R{radius:g}-V{V:g}")
@@ -133,15 +135,10 @@ def main(argv=None) -> int:
     ap.add_argument("--rerun", action="store_true", help="run every curve again (default: reuse newer verdicts)")
     args = ap.parse_args(argv)
     logging.basicConfig(level=logging.INFO, format="%(levelname)s %(name)s: %(message)s")
-    from pipeline.store import paths
-    from pipeline.store.atomic import save_figure, save_text
-    from pipeline.config.loader import ConfigError
 
     folder = paths.build() / "studies" / "radius" / "curves"
     rows = []
     try:
-        from pipeline.progress import progress
-
         for R in progress([float(x) for x in args.radii.split(",")], desc="radius study", unit="curve"):
             v = curve_verdict(args.base, folder, R, reuse=not args.rerun)
             rows.append(summarise(R, v["V"], v["cant"], v["rows"]))

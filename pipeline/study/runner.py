@@ -23,6 +23,7 @@ from dataclasses import dataclass
 from typing import Any, Callable, Iterator, Mapping
 
 from pipeline.study.results_table import INPUTS, KEY, ResultsTable
+from pipeline.progress import progress as progress_bar
 
 log = logging.getLogger("pipeline.study")
 
@@ -52,7 +53,7 @@ class RunStats:
 def local_cluster(workers: int | None = None):
     """A started local cluster of ``workers`` (default: the machine's cores) single-threaded
     worker processes (close it, or enter it in ``study_client``, which closes it)."""
-    from distributed import LocalCluster
+    from distributed import LocalCluster  # lazy: brings in distributed
 
     logging.getLogger("distributed").setLevel(logging.WARNING)    # the scheduler runs in this process
     n = workers or os.cpu_count() or 1
@@ -65,7 +66,7 @@ def study_client(scheduler: str | None = None, workers: int | None = None, clust
     """A dask.distributed Client: of the scheduler at ``scheduler``, else of ``cluster`` (one of
     ``local_cluster``, e.g. started ahead in another thread) or a new local cluster; the local
     cluster is closed on exit."""
-    from distributed import Client
+    from distributed import Client  # lazy: brings in distributed
 
     logging.getLogger("distributed").setLevel(logging.WARNING)
     if scheduler:
@@ -95,9 +96,8 @@ def run_tasks(tasks: list[Task], fn: Callable, table: ResultsTable, client, cont
     """Run the tasks not yet in ``table`` on ``client`` and append their rows as they finish.
     ``table`` must have been opened with the tasks' inputs (stale rows dropped).  ``contexts``:
     name -> object, scattered to all workers once (only those the pending tasks use)."""
-    from distributed import as_completed
+    from distributed import as_completed  # lazy: brings in distributed
 
-    from pipeline.progress import progress as progress_bar
 
     keys = [t.key for t in tasks]
     if len(set(keys)) != len(keys):

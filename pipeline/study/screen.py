@@ -22,6 +22,12 @@ import numpy as np
 
 from pipeline.store import artifacts, paths
 from pipeline.store.atomic import save_figure
+from pipeline.stages.stability import case_linear_model
+from pipeline.caches.friction_curves import with_curves
+from pipeline.config.case import resolve_case
+from pipeline.study.definition import grid_of, load_study
+from pipeline.study.agreement import write_agreement
+from postprocess.plots.stability import map_figure
 
 log = logging.getLogger("pipeline.stability")
 COLUMNS = ["case", "dy_wr", "gamma_y", "mu", "sigma_max", "f_max", "label_max", "sigma_lf", "label_na", "sigma_na"]
@@ -31,8 +37,8 @@ def grid_roots(lm0, con, v: float, gammas, mus, mu_lm0: float | None = None):
     """Yield (mu, gamma_y, roots) of the screen at every (gamma_y, mu): one ``Basis`` of ``lm0``'s
     structures, one linearisation per mu (``lm0`` itself at ``mu_lm0``), the operating point per
     creepage.  ``con``: the contact artifact's arrays; v: rolling speed (m/s)."""
-    from solvers.timeloop.interaction import contact_model
-    from solvers.stability.screen import Basis, linearise, operating_point, screen
+    from solvers.timeloop.interaction import contact_model  # lazy: brings in numba, rocket_fft, scipy
+    from solvers.stability.screen import Basis, linearise, operating_point, screen  # lazy: brings in numba
 
     basis = Basis(lm0)
     for mu in mus:
@@ -45,11 +51,7 @@ def grid_roots(lm0, con, v: float, gammas, mus, mu_lm0: float | None = None):
 
 def screen_rows(case: str, gammas, mus) -> list[dict]:
     """The screen at every (gamma_y, mu) of one case's position."""
-    from pipeline.stages.stability import case_linear_model
-
     c, lm0, labels, _ = case_linear_model(case)
-    from pipeline.caches.friction_curves import with_curves
-    from pipeline.config.case import resolve_case
 
     con, _ = artifacts.load_npz(paths.case_dir(case) / "contact.npz", "contact")
     con = with_curves(case, con, [float(m) for m in mus])
@@ -67,15 +69,12 @@ def screen_rows(case: str, gammas, mus) -> list[dict]:
 
 
 def _wheel(lm):
-    from solvers.timeloop.interaction import WheelModes
+    from solvers.timeloop.interaction import WheelModes  # lazy: brings in numba, rocket_fft, scipy
 
     return WheelModes(lm.f_r, lm.modal_mass, lm.zeta, lm.phi)
 
 
 def run_stability_map(study: str, quick: bool = False) -> str:
-    from pipeline.study.definition import grid_of
-    from pipeline.study.definition import load_study
-
     spec, _ = load_study(study)
     gammas, mus = grid_of(spec, quick)
     out = paths.build() / "studies" / (study + ("-quick" if quick else ""))
@@ -90,14 +89,10 @@ def run_stability_map(study: str, quick: bool = False) -> str:
     log.info("stability map %s: %d cases in %.2f s (%.1f ms per case) -> %s", study, len(rows), wall,
              1e3 * wall / max(len(rows), 1), out / "stability.csv")
     if (out / "map.csv").exists():
-        from pipeline.study.agreement import write_agreement
-
         write_agreement(out, rows, spec)
     return str(out / "stability.csv")
 
 
 def plot_map(rows: list[dict], gammas, mus, path, case: str) -> None:
     """``postprocess.plots.stability.map_figure``, saved atomically to ``path``."""
-    from postprocess.plots.stability import map_figure
-
     save_figure(map_figure(rows, gammas, mus, case), path, dpi=100)

@@ -28,15 +28,14 @@ from pathlib import Path
 from pipeline.store import artifacts, paths
 from pipeline.config.loader import ConfigError
 from pipeline.study.definition import load_study
+from pipeline.study import contact, damping, line, map
+from pipeline.study.runner import local_cluster, study_client
 
 log = logging.getLogger("pipeline.study")
 
 
-
 def _kind_module(kind: str):
     """The module that runs a study of this kind: ``run(spec, src, out, ...)``."""
-    from pipeline.study import contact, damping, line, map
-
     return {"map": map, "damping": damping, "contact": contact, "line": line}[kind]
 
 
@@ -61,8 +60,6 @@ class LazyClient:
             self._starting.start()
 
     def _start_quietly(self) -> None:
-        from pipeline.study.runner import local_cluster
-
         try:
             self._cluster = local_cluster(self.workers)
         except Exception as e:                       # noqa: BLE001 - get() starts again and raises
@@ -76,8 +73,6 @@ class LazyClient:
     def get(self):
         self._join()
         if self._client is None:
-            from pipeline.study.runner import study_client
-
             t0 = getattr(self, "_t0", None) or time.perf_counter()
             cluster, self._cluster = self._cluster, None
             self._client = self._stack.enter_context(study_client(self.scheduler, self.workers, cluster))

@@ -20,6 +20,8 @@ from solvers.timeloop.interaction import StopRule, WheelModes, contact_model, si
 from solvers.study import harmonic_response, periodic_creepage, squeals
 
 from pipeline.study.tasks import CreepageTask, DampingTask, MapTask, ModeTask, Simulation
+from solvers.timeloop.inputs import curve_label
+from pipeline.stages.radiate import sound_power_of_forces
 
 _CONTACT: dict = {}
 _WARM: set = set()
@@ -29,8 +31,6 @@ CASE_MODEL = object()      # _measures: the context's own radiation model
 
 def _contact(ctx, mu):
     """The contact model of ``ctx`` with the curve of ``mu`` (a Coulomb coefficient or a law)."""
-    from solvers.timeloop.inputs import curve_label
-
     key = (ctx.case, ctx.inputs, curve_label(mu))
     if key not in _CONTACT:
         _CONTACT[key] = contact_model(ctx.contact, mu)
@@ -72,8 +72,6 @@ def _measures(ctx, res, sim: Simulation, radiation=CASE_MODEL) -> dict:
            "L_W": NAN, "f_sound": NAN}
     model = ctx.radiation if radiation is CASE_MODEL else radiation
     if model is not None and squeals(m["L_F2"], sim.level):
-        from pipeline.stages.radiate import sound_power_of_forces
-
         s = sound_power_of_forces(model, res.F_final, res.dt_final or res.dt)
         row["L_W"], row["f_sound"] = float(s["L_W"]), float(s["f_sound"])
     if not math.isfinite(row["L_F2"]):

@@ -29,8 +29,11 @@ from pathlib import Path
 
 import numpy as np
 
-from pipeline.store import paths
+from pipeline.store import paths, artifacts
 from pipeline.validation.bem_table import GROUND_BELOW_CONTACT
+from pipeline.stages.radiate import sound_power_of_forces, load_radiation_model
+from pipeline.validation import bem_table as bt
+from pipeline.store.atomic import atomic_write
 
 log = logging.getLogger("pipeline.validation.bem_check")
 ROOT = Path(__file__).resolve().parents[2]
@@ -39,7 +42,7 @@ ROOT = Path(__file__).resolve().parents[2]
 def wheel_mesh(model, n: int, f: float, ds_max: float, n_phi: int | None = None):
     """(vertices, triangles, phi per vertex, outline node indices, outline normals) for harmonic n at f
     (``n_phi``: the number of vertices around, instead of the lambda/6 rule)."""
-    from solvers.radiation.bem_surface import coarsen, outline, outward_normals, revolve
+    from solvers.radiation.bem_surface import coarsen, outline, outward_normals, revolve  # lazy: brings in scipy
 
     modes = model.meta["modes"]
     pts = np.asarray(modes["points"], float)
@@ -55,8 +58,8 @@ def wheel_rows(model, harmonics, ds_max: float, ground: float | None, solver: st
                ground_order: int | None = None, on_row=None) -> list[dict]:
     """Per (n,0,a) mode of ``harmonics`` and force direction: L_W of harmonic n by the radiation stage
     and by the BEM (free field, ground) at the mode's eigenfrequency, unit RMS force."""
-    from solvers.radiation.force_power import harmonic_power
-    from solvers.radiation import bem
+    from solvers.radiation.force_power import harmonic_power  # lazy: brings in scipy
+    from solvers.radiation import bem  # lazy: brings in scipy
 
     rows = []
     for n in harmonics:
@@ -86,8 +89,8 @@ def _powers(model, n: int, f: float, forces, ds_max: float, ground: float | None
     mesh's vertex count and wall times: ``solver`` "revolution" (``solvers.radiation.bem_revolution``: the first
     block row per harmonic, the ground by the mirror symmetry; ``ground_order`` its cross block's
     quadrature order) or "3-D" (``solvers.radiation.bem``: the whole mesh, an image wheel for the ground)."""
-    from solvers.radiation.bem_surface import normal_velocity
-    from solvers.radiation import bem, bem_revolution
+    from solvers.radiation.bem_surface import normal_velocity  # lazy: brings in scipy
+    from solvers.radiation import bem, bem_revolution  # lazy: brings in scipy
 
     modes = model.meta["modes"]
     idx = model.groups[list(model.harmonics).index(n)]
@@ -144,7 +147,7 @@ def convergence_meshes(model, n: int):
 def solver_label(solver: str, ground_order: int | None) -> str:
     """The table's solver column: the solver, the cross block's quadrature order if not bempp's, and
     bempp's backend if not numba."""
-    from solvers.radiation.bem import device
+    from solvers.radiation.bem import device  # lazy: brings in scipy
 
     return (solver + ("" if ground_order is None else f", ground q{ground_order}")
             + ("" if device() == "numba" else f", {device()}"))
@@ -158,8 +161,8 @@ def convergence_rows(model, n: int = 2, meshes=CONVERGENCE, done: list[dict] = (
     """Mesh convergence of the free-field Delta L_W of (n,0,a) (unit lateral force): ``meshes`` = (element
     size along the outline, vertices around or None for the lambda/6 rule); meshes in ``done`` (rows of
     an earlier run, same solver) are kept, not recomputed."""
-    from solvers.radiation.force_power import harmonic_power
-    from solvers.radiation import bem
+    from solvers.radiation.force_power import harmonic_power  # lazy: brings in scipy
+    from solvers.radiation import bem  # lazy: brings in scipy
 
     i = [j for j in range(len(model.f_r)) if model.n[j] == n and model.m[j] == 0 and model.cls[j] == "a"][0]
     f = float(model.f_r[i])
@@ -184,10 +187,8 @@ def default_case_row(model, ds_max: float, ground: float | None, solver: str = "
     """The default case's L_W (its simulate.npz's final stretch, the radiation stage's
     ``sound_power_of_forces``) with the loudest tone's dominant harmonic replaced by the BEM's power of
     that harmonic under the tone's forces."""
-    from solvers.radiation import bem
+    from solvers.radiation import bem  # lazy: brings in scipy
 
-    from pipeline.store import artifacts
-    from pipeline.stages.radiate import sound_power_of_forces
 
     sim, _ = artifacts.load_npz(paths.case_dir("default") / "simulate.npz", "simulate")
     t = np.asarray(sim["t_final"], float)
@@ -212,9 +213,6 @@ def default_case_row(model, ds_max: float, ground: float | None, solver: str = "
 def write(rows: list[dict], ground: float | None, ds_max: float, conv_rows: list[dict] = (), plan=()) -> None:
     """Merge ``rows`` / ``conv_rows`` into the CSV cache (seeded from the fragment) and rewrite the
     fragment from the whole cache."""
-    from pipeline.validation import bem_table as bt
-    from pipeline.store.atomic import atomic_write
-
     out = paths.build() / "studies" / "bem"
     frag = ROOT / "docs" / "validation" / "72_bem_wheel.md"
     wheel, conv = bt.cached(out, frag)
@@ -245,8 +243,6 @@ def plan_rows(model, ds_max: float) -> list[dict]:
 
 
 def main(argv=None) -> int:
-    from pipeline.stages.radiate import load_radiation_model
-
     ap = argparse.ArgumentParser(prog="python -m pipeline.validation.bem_check", description=__doc__.split("\n\n")[0])
     ap.add_argument("--modes", type=int, nargs="*", default=[2, 3], help="harmonics n of the (n,0,a) modes")
     ap.add_argument("--ds-max", type=float, default=0.03, help="largest element size along the outline (m)")
@@ -265,7 +261,7 @@ def main(argv=None) -> int:
     logging.basicConfig(level=logging.INFO, format="%(levelname)s %(name)s: %(message)s")
     ground = None if a.no_ground else GROUND_BELOW_CONTACT
     if not a.from_csv:
-        from solvers.radiation.bem import use_device
+        from solvers.radiation.bem import use_device  # lazy: brings in scipy
 
         try:
             use_device(a.device)
@@ -280,8 +276,6 @@ def main(argv=None) -> int:
         write([], ground, a.ds_max, plan=plan_rows(model, a.ds_max))
         return 0
     if a.convergence is not None:
-        from pipeline.validation import bem_table as bt
-
         done = bt.cached(paths.build() / "studies" / "bem", ROOT / "docs" / "validation" / "72_bem_wheel.md")[1]
         plan = plan_rows(model, a.ds_max)
         for n in a.convergence or [2]:

@@ -11,6 +11,8 @@ import math
 from pathlib import Path
 
 import numpy as np
+from pipeline.store.atomic import atomic_write
+from solvers.constants import F_MAX_HZ
 
 WHEEL_KEYS = ("mode", "f_hz", "force", "vertices", "solver", "L_W_simple", "L_W_bem_free", "L_W_bem_ground",
               "dL_free", "dL_ground", "wall_free_s", "wall_ground_s", "load")
@@ -102,8 +104,6 @@ def read_csv(path: Path, keys, defaults: dict) -> list[dict]:
 
 
 def write_csv(path: Path, rows: list[dict], keys) -> None:
-    from pipeline.store.atomic import atomic_write
-
     path.parent.mkdir(parents=True, exist_ok=True)
     with atomic_write(path) as tmp, open(tmp, "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=list(keys))
@@ -276,8 +276,6 @@ def _summary(rows: list[dict]) -> str:
 
 def fragment_text(wheel: list[dict], conv: list[dict], ds_max: float, plan=()) -> str:
     """docs/validation/72_bem_wheel.md from the cached rows."""
-    from solvers.constants import F_MAX_HZ
-
     spread = {}
     for r in wheel:
         for c in ("L_W_bem_free", "L_W_bem_ground"):

@@ -22,6 +22,10 @@ import argparse
 import itertools
 
 import numpy as np
+from pipeline.store import artifacts, paths
+from pipeline.stages.stability import case_linear_model
+from pipeline.study.definition import grid_of, load_study
+from pipeline.study.screen import grid_roots
 
 CASES = {"dy05": "(2,0,a)", "dy10": "(3,0,a)", "default": "(2,0,a)"}
 MU_LF = 0.45     # at -5 mm the reference's mode is stated for mu < 0.45 (above: the suspension instability)
@@ -30,11 +34,6 @@ GRID_MM = (-25.0, -20.0, -17.5, -15.0, -12.5, -10.0, -5.0)
 
 def case_models(study: str = "map"):
     """{case: (LinearModel, labels, contact artifact, case dict, y^W)} and the study grid."""
-    from pipeline.store import artifacts, paths
-    from pipeline.stages.stability import case_linear_model
-    from pipeline.study.definition import grid_of
-    from pipeline.study.definition import load_study
-
     spec, _ = load_study(study)
     gammas, mus = grid_of(spec, quick=False)
     out = {}
@@ -48,8 +47,6 @@ def case_models(study: str = "map"):
 
 def share(lm, labels, con, c, target: str, gammas, mus, mu_max: float = np.inf) -> float:
     """Share of the grid's unstable cases (mu < mu_max) whose fastest pole is ``target``."""
-    from pipeline.study.screen import grid_roots
-
     fastest = [roots[0] for _, _, roots in grid_roots(lm, con, c["kinematics"]["speed"], gammas,
                                                       [mu for mu in mus if mu < mu_max])]
     unstable = [r for r in fastest if r.sigma > 0]

@@ -19,6 +19,13 @@ import logging
 import time
 
 import numpy as np
+from geometry.standard_profiles import TABLE_DEPTH, rail_head_points, s1002_points, wheel_tread_points, rail_head_curve
+from pipeline.config.case_profiles import write_profile
+from geometry.calibration import THESIS_POSITIONS, FitProblem, fit, rolling_circle_offset, split
+from geometry.profiles import GRID_STEP, build_profile
+from geometry.wear import worn_rail, worn_wheel
+from pipeline.stages.rail import load_rail_params
+from pipeline.stages.wheel import load_wheel
 
 log = logging.getLogger("pipeline.calibrate")
 WHEEL, RAIL = "c20", "bv50"
@@ -50,10 +57,6 @@ def _resample_rail(y, z, step=STEP, steep_deg=75.0):
 
 def write_standard(pw: dict, rails: dict) -> list:
     """The new-profile files; returns their paths."""
-    from geometry.standard_profiles import TABLE_DEPTH, rail_head_points, s1002_points, wheel_tread_points
-
-    from pipeline.config.case_profiles import write_profile
-
     out = [write_profile("s1002", {"kind": "wheel", "source": "EN 13715 (UIC 510-2) S1002, generated from its "
                                    "piecewise definition (sections A-G; geometry/standard_profiles.s1002)",
                                    "noise_mm": 0, "generated_by": "pipeline/validation/calibrate_profiles.py"},
@@ -77,15 +80,6 @@ def write_standard(pw: dict, rails: dict) -> list:
 
 def calibrate(seed: int = 1) -> dict:
     """Fit the wear and write c20_worn.csv, bv50_worn.csv; returns the fit."""
-    from geometry.calibration import THESIS_POSITIONS, FitProblem, fit, rolling_circle_offset, split
-    from geometry.profiles import GRID_STEP, build_profile
-    from geometry.standard_profiles import rail_head_curve, wheel_tread_points
-    from geometry.wear import worn_rail, worn_wheel
-
-    from pipeline.config.case_profiles import write_profile
-    from pipeline.stages.rail import load_rail_params
-    from pipeline.stages.wheel import load_wheel
-
     pw, _ = load_wheel(WHEEL)
     pr, _ = load_rail_params(RAIL)
     pr60, _ = load_rail_params("60e1")

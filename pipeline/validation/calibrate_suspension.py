@@ -25,7 +25,15 @@ import logging
 
 import numpy as np
 
-from pipeline.store import paths
+from pipeline.store import paths, artifacts
+from pipeline.caches.friction_curves import with_curves
+from pipeline.stages.stability import case_linear_model
+from pipeline.study.screen import grid_roots
+from pipeline.study.definition import grid_of, load_study
+from pipeline.config.loader import load
+from pipeline.config.input_schemas import CASE as CASE_SCHEMA
+from pipeline.stages.wheel import load_wheel
+from pipeline.validation.calibrate_wheel import set_toml_values
 
 log = logging.getLogger("pipeline.calibrate")
 
@@ -38,11 +46,6 @@ VERTICAL = ("bounce", "roll")
 def lf_growth(case: str, c_ratio: float, mu: float, gammas) -> float:
     """Fastest growth rate (1/s) of a low-frequency (track) root over ``gammas`` at friction
     ``mu`` with the vertical suspension damping scaled by ``c_ratio``; -inf when none."""
-    from pipeline.caches.friction_curves import with_curves
-    from pipeline.stages.stability import case_linear_model
-    from pipeline.store import artifacts
-    from pipeline.study.screen import grid_roots
-
     c, lm, _, _ = case_linear_model(case)
     modes, _ = artifacts.load_npz(paths.wheel_dir(c["wheel"]) / "modes.npz", "wheel-modes")
     zeta = np.array(lm.zeta, float)
@@ -56,10 +59,8 @@ def lf_growth(case: str, c_ratio: float, mu: float, gammas) -> float:
 def calibrate(study: str = "map", lo: float = 1.0, hi: float = 100.0) -> dict:
     """The smallest damping ratio c/c_file in [lo, hi] with no growing low-frequency root at
     MU_QUIET on the study's creepage grid; the growth at MU_LOUD as the check."""
-    from scipy.optimize import brentq
+    from scipy.optimize import brentq  # lazy: brings in scipy
 
-    from pipeline.study.definition import grid_of
-    from pipeline.study.definition import load_study
 
     spec, _ = load_study(study)
     gammas, _ = grid_of(spec, quick=False)
@@ -74,10 +75,6 @@ def calibrate(study: str = "map", lo: float = 1.0, hi: float = 100.0) -> dict:
 
 
 def main(argv=None) -> None:
-    from pipeline.config.loader import load
-    from pipeline.config.input_schemas import CASE as CASE_SCHEMA
-    from pipeline.stages.wheel import load_wheel
-
     ap = argparse.ArgumentParser(prog="python -m pipeline.validation.calibrate_suspension")
     ap.add_argument("--study", default="map")
     ap.add_argument("--write", action="store_true", help="write c_vertical into the case's wheel file")
@@ -90,8 +87,6 @@ def main(argv=None) -> None:
     print(f"c_vertical = {c_v:.4g} N s/m (x {r['ratio']:.3f}); fastest low-frequency growth at {CASE}: "
           f"{r['sigma_quiet']:+.2f} 1/s at mu = {MU_QUIET}, {r['sigma_loud']:+.2f} 1/s at mu = {MU_LOUD}")
     if a.write:
-        from pipeline.validation.calibrate_wheel import set_toml_values
-
         set_toml_values(paths.wheel_file(wheel), {("suspension", "c_vertical"): f"{c_v:.4g}"})
 
 

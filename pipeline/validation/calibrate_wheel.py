@@ -30,6 +30,12 @@ import tempfile
 import numpy as np
 
 from pipeline.store import paths
+from geometry.wheel import tread_radius, wheel_segments, check_wheel
+from pathlib import Path
+from geometry.mesher import mesh_section
+from pipeline.stages.wheel import _boundary_nodes, modal_model, solve_all, reference_rows, load_wheel
+from postprocess.modes.reference import match_modes, summary
+from pipeline.store.atomic import atomic_write
 
 log = logging.getLogger("pipeline.calibrate")
 
@@ -64,8 +70,7 @@ TARGETS = {
 def tread_ratio(model: dict, p: dict, y: float, label) -> float:
     """Phi_3/Phi_2 of mode ``label`` (its flexible cos twin) at the running-surface point y^W,
     as the greens stage takes it (``solvers.wheel.receptance.contact_point`` on the tread boundary)."""
-    from geometry.wheel import tread_radius
-    from solvers.wheel.receptance import contact_point, contact_shape
+    from solvers.wheel.receptance import contact_point, contact_shape  # lazy: brings in scipy
 
     surface = np.unique(np.concatenate([model["boundary_tread"], model["boundary_flange"]]))
     where = contact_point(model["points"], surface, y, p["axle"]["rolling_circle_z"],
@@ -82,13 +87,6 @@ def tread_ratio(model: dict, p: dict, y: float, label) -> float:
 def solve_section(p: dict, workers: int = 2) -> dict:
     """Mesh and solve the wheel ``p`` in a temporary folder; the modal model with the running
     surface's boundary nodes (``boundary_tread``, ``boundary_flange``)."""
-    from pathlib import Path
-
-    from geometry.mesher import mesh_section
-    from geometry.wheel import wheel_segments
-
-    from pipeline.stages.wheel import _boundary_nodes, modal_model, solve_all
-
     msh = str(Path(tempfile.mkdtemp(prefix="calib-")) / "section.msh")
     names = mesh_section(wheel_segments(p), msh)
     results, pts, cells = solve_all(p, names, msh, workers)
@@ -100,10 +98,6 @@ def solve_section(p: dict, workers: int = 2) -> dict:
 
 def residuals(p: dict, workers: int = 2) -> tuple[np.ndarray, dict]:
     """Weighted residual vector of wheel parameters ``p`` against ``TARGETS`` and a summary."""
-    from postprocess.modes.reference import match_modes, summary
-
-    from pipeline.stages.wheel import reference_rows
-
     model = solve_section(p, workers)
     ref = reference_rows(paths.ROOT / TARGETS["reference"])
     matches = match_modes(ref, model["f_hz"], model["n"], model["m"], model["cls"])
@@ -137,9 +131,8 @@ def _with(p: dict, x: np.ndarray) -> dict:
 
 def fit(p: dict, max_nfev: int = 8, workers: int = 2):
     """least_squares over ``FREE`` from the values of ``p``; returns (fitted parameters, summary)."""
-    from scipy.optimize import least_squares
+    from scipy.optimize import least_squares  # lazy: brings in scipy
 
-    from geometry.wheel import check_wheel
 
     lo = np.array([b[0] for b in FREE.values()])
     hi = np.array([b[1] for b in FREE.values()])
@@ -169,8 +162,6 @@ def fit(p: dict, max_nfev: int = 8, workers: int = 2):
 
 def set_toml_values(path, values: dict) -> None:
     """Set {(table, key): text} in a TOML file, keeping its comments and layout (atomic)."""
-    from pipeline.store.atomic import atomic_write
-
     text = path.read_text()
     for (table, key), val in values.items():
         sec = re.search(rf"^\[{table}\]\s*$(.*?)(?=^\[|\Z)", text, flags=re.M | re.S)
@@ -186,8 +177,6 @@ def write_back(path, q: dict) -> None:
 
 
 def main(argv=None) -> None:
-    from pipeline.stages.wheel import load_wheel
-
     ap = argparse.ArgumentParser(prog="python -m pipeline.validation.calibrate_wheel")
     ap.add_argument("--wheel", default="c20")
     ap.add_argument("--max-nfev", type=int, default=8, help="iterations (each also costs one wheel "

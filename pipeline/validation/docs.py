@@ -15,6 +15,7 @@ from collections.abc import Mapping
 
 from pipeline.store.artifacts import atomic_write
 from pipeline.store.paths import ROOT
+from pipeline.config.schema import REQUIRED, Field, ListOf
 
 HEADER = """# Validation
 
@@ -64,8 +65,6 @@ def _cell(text) -> str:
 
 
 def _default(spec) -> str:
-    from pipeline.config.schema import REQUIRED
-
     d = spec.default
     if d is REQUIRED:
         return "required"
@@ -79,8 +78,6 @@ def _default(spec) -> str:
 def schema_rows(schema: Mapping, prefix: str = "") -> list[tuple[str, str, str, str, str]]:
     """(dotted key, unit, allowed, default, description) of every key of ``schema``, tables
     flattened in their order (``[a] b`` is ``a.b``)."""
-    from pipeline.config.schema import Field, ListOf
-
     rows = []
     for key, spec in schema.items():
         name = f"{prefix}{key}"

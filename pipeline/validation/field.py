@@ -18,6 +18,17 @@ level); a measured level is set beside the tool's L_pA at 7.5 m only when the so
 from __future__ import annotations
 
 import math
+import tomllib
+import argparse
+import logging
+import sys
+from pipeline.store.paths import ROOT
+from pathlib import Path
+from pipeline.store import paths
+from pipeline.store.artifacts import ArtifactError
+from pipeline.store.atomic import save_text
+from pipeline.config.loader import ConfigError
+from pipeline.study.radius import curve_verdict
 
 # one dict per observation: source (author, year, journal/report, address; a value quoted from a secondary source says
 # so), vehicle, radius_m and speed_kmh (number, or text for a range or class), f_hz (text), level (text: as the source
@@ -179,10 +190,6 @@ def level_compared(o: dict, v: dict | None) -> bool:
 
 def vehicle_of(base: str) -> str:
     """The vehicle named by the shipped curve ``base``."""
-    import tomllib
-
-    from pipeline.store.paths import ROOT
-
     return str(tomllib.loads((ROOT / "pipeline" / "curves" / f"{base}.toml").read_text())["vehicle"])
 
 
@@ -303,17 +310,6 @@ def verdict_of(run: dict) -> dict:
 
 
 def main(argv=None) -> int:
-    import argparse
-    import logging
-    import sys
-    from pathlib import Path
-
-    from pipeline.store import paths
-    from pipeline.store.artifacts import ArtifactError
-    from pipeline.store.atomic import save_text
-    from pipeline.config.loader import ConfigError
-    from pipeline.study.radius import curve_verdict
-
     ap = argparse.ArgumentParser(prog="python -m pipeline.validation.field", description=__doc__.split("\n\n")[0])
     ap.add_argument("--rerun", action="store_true", help="run every curve again (default: reuse newer verdicts)")
     args = ap.parse_args(argv)

@@ -6,6 +6,7 @@ from pathlib import Path
 import numpy as np
 
 from solvers.constants import SQUEAL_LEVEL_DB
+from pipeline.store.atomic import atomic_write, save_figure
 
 ROOT = Path(__file__).resolve().parents[2]
 DOC = ROOT / "docs" / "validation"
@@ -19,7 +20,7 @@ def _f(x, fmt=".3f"):
 
 
 def cycles_table(rows: list[dict]) -> str:
-    from postprocess.limit_cycle_measures import bound_of
+    from postprocess.limit_cycle_measures import bound_of  # lazy: brings in numba, rocket_fft, scipy
 
     head = ("| case | mu, gamma_y | f_lc (Hz) | mode: f_r, screen root (Hz), sigma (1/s) | detuning (bandwidths), "
             "response (dB) | s0, s_knee, margin (m/s) | s2 min..max (m/s) | dip below s0 (m/s) | partial slip | "
@@ -37,7 +38,7 @@ def cycles_table(rows: list[dict]) -> str:
 
 
 def scan_table(rows: list[dict]) -> str:
-    from postprocess.limit_cycle_measures import bound_of
+    from postprocess.limit_cycle_measures import bound_of  # lazy: brings in numba, rocket_fft, scipy
 
     out = ["| position | gamma_y | mu | screen sigma_max (1/s), root | L_F2 (dB) | L_W (dB) | f (Hz) | "
            "dip / margin | s2 rms (m/s) | partial slip | bound |", "|" + "---|" * 11]
@@ -64,7 +65,7 @@ def sensitivity_table(rows: list[dict], key: str, label: str) -> str:
 def scale_check(rows: list[dict]) -> tuple[str, dict]:
     """The issue's scale check with this model's limit cycles: the face velocity L_W = 120 and 140 dB
     need, against the contact's lateral slip velocity (rms of s2 over the cycle) and its bound."""
-    from postprocess.limit_cycle_measures import face_velocity_for_level
+    from postprocess.limit_cycle_measures import face_velocity_for_level  # lazy: brings in numba, rocket_fft, scipy
 
     v120, v140 = (face_velocity_for_level(L, SIGMA_AXIAL, FACE_AREA) for L in (120.0, 140.0))
     sq = [r for r in rows if np.isfinite(r["L_W"]) and r["s2_rms"] > 0 and r["f_dominant"] > 200]
@@ -94,9 +95,8 @@ def scale_check(rows: list[dict]) -> tuple[str, dict]:
 
 
 def write_doc(cycles, records, comp, scan, slices, curves) -> Path:
-    from postprocess.plots.limit_cycle import cycles_figure, scan_figure
+    from postprocess.plots.limit_cycle import cycles_figure, scan_figure  # lazy: brings in numba, rocket_fft, scipy
 
-    from pipeline.store.atomic import atomic_write, save_figure
 
     save_figure(cycles_figure(records), DOC / "limit_cycle_records.png", dpi=90)
     save_figure(scan_figure(scan), DOC / "limit_cycle_scan.png", dpi=90)

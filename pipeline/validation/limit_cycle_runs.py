@@ -24,10 +24,22 @@ import csv
 import logging
 import time
 from pathlib import Path
+import fcntl
+import json
 
 import numpy as np
 
-from pipeline.store import paths
+from pipeline.store import paths, artifacts
+from pipeline.study.definition import load_study
+from pipeline.study.tasks import Simulation
+from pipeline.stages.stability import case_linear_model
+from pipeline.study.context import load_context
+from pipeline.caches.friction_curves import with_curves
+from pipeline.study.screen import grid_roots, screen_rows
+from pipeline.store.atomic import atomic_write, save_text
+from pipeline.store.code_hash import code_key
+from pipeline.validation.make import ensure_case
+from pipeline.validation.limit_cycle_doc import write_doc
 
 log = logging.getLogger("pipeline.validation.limit_cycle_runs")
 
@@ -44,9 +56,6 @@ def out_dir() -> Path:
 
 
 def simulation():
-    from pipeline.study.definition import load_study
-    from pipeline.study.tasks import Simulation
-
     spec, _ = load_study("map")
     return Simulation.of(spec["simulation"])
 
@@ -54,10 +63,10 @@ def simulation():
 def run_point(ctx, sim, gamma_y: float, mu: float, contact=None):
     """(InteractionResult, the map's row, ``cycle_measures``) at (gamma_y, mu); ``contact``: another
     ContactModel than the case's curve for mu (a sensitivity)."""
-    from postprocess.limit_cycle_measures import cycle_measures
-    from solvers.timeloop.interaction import StopRule, simulate
+    from postprocess.limit_cycle_measures import cycle_measures  # lazy: brings in numba, rocket_fft, scipy
+    from solvers.timeloop.interaction import StopRule, simulate  # lazy: brings in numba, rocket_fft, scipy
 
-    from pipeline.study.worker import _contact, _measures, _warm, _wheel
+    from pipeline.study.worker import _contact, _measures, _warm, _wheel  # lazy: brings in numba, rocket_fft, scipy
 
     cm = contact if contact is not None else _contact(ctx, mu)
     _warm(ctx, ctx.tangential)
@@ -74,10 +83,9 @@ def run_point(ctx, sim, gamma_y: float, mu: float, contact=None):
 def coupled_root(case: str, ctx, mu: float, gamma_y: float, f_lc: float) -> dict:
     """The screen's root nearest the limit-cycle frequency (or its 1/2, 1/3), its free mode (f_r,
     zeta), and the detuning of f_lc from f_r (``postprocess.limit_cycle_measures.sdof_detuning``)."""
-    from postprocess.limit_cycle_measures import sdof_detuning
-    from solvers.stability.screen import screen
+    from postprocess.limit_cycle_measures import sdof_detuning  # lazy: brings in numba, rocket_fft, scipy
+    from solvers.stability.screen import screen  # lazy: brings in numba
 
-    from pipeline.stages.stability import case_linear_model
 
     _, lm, labels, f_open = case_linear_model(case, mu=mu, gamma_y=gamma_y)
     roots = [r for r in screen(lm) if r.mode >= 0]
@@ -91,8 +99,6 @@ def coupled_root(case: str, ctx, mu: float, gamma_y: float, f_lc: float) -> dict
 
 def limit_cycles(sim) -> tuple[list[dict], dict]:
     """Each position's limit cycle at its case's settings: rows of measures and the records."""
-    from pipeline.study.context import load_context
-
     rows, records = [], {}
     for case in CASES:
         ctx = load_context(case)
@@ -106,7 +112,7 @@ def limit_cycles(sim) -> tuple[list[dict], dict]:
 
 
 def _curve(ctx, mu):
-    from pipeline.study.worker import _contact
+    from pipeline.study.worker import _contact  # lazy: brings in numba, rocket_fft, scipy
 
     return _contact(ctx, mu)
 
@@ -114,8 +120,6 @@ def _curve(ctx, mu):
 def compliance_check(sim) -> list[dict]:
     """The default case with its tangential compliance A1, A2 scaled (the thesis' factor 2 on the
     compliance [4.32]-[4.35]; it reports the results insensitive to it)."""
-    from pipeline.study.context import load_context
-
     ctx = load_context("default")
     out = []
     for fac in COMPLIANCE_FACTORS:
@@ -130,9 +134,8 @@ def curve_check(sim) -> list[dict]:
     """The default case with its friction curve recomputed by TANG (``rf_curve`` on the static
     pressure) at the contact stage's sampling (18 + 5 nodes) and at twice as many nodes (36 + 10):
     how much the curve's sampling and Hermite interpolation near saturation move the limit cycle."""
-    from solvers.contact.friction import rf_curve
+    from solvers.contact.friction import rf_curve  # lazy: brings in numba, rocket_fft, scipy
 
-    from pipeline.study.context import load_context
 
     ctx = load_context("default")
     con = ctx.contact
@@ -149,11 +152,6 @@ def curve_check(sim) -> list[dict]:
 def mode_growth(case: str, label: str, gammas, mus) -> list[dict]:
     """The screen's growth rate (1/s) and frequency of the root continuing mode ``label`` at every
     (gamma_y, mu) of one position (``pipeline.study.screen.grid_roots``)."""
-    from pipeline.caches.friction_curves import with_curves
-    from pipeline.stages.stability import case_linear_model
-    from pipeline.store import artifacts
-    from pipeline.study.screen import grid_roots
-
     c, lm0, labels, _ = case_linear_model(case)
     con, _ = artifacts.load_npz(paths.case_dir(case) / "contact.npz", "contact")
     con = with_curves(case, con, [float(m) for m in mus])      # the curves at mus (the friction cache)
@@ -167,9 +165,8 @@ def mode_growth(case: str, label: str, gammas, mus) -> list[dict]:
 
 def knees() -> list[dict]:
     """s_knee (m/s) of every friction curve of every position."""
-    from postprocess.limit_cycle_measures import knee_slip
+    from postprocess.limit_cycle_measures import knee_slip  # lazy: brings in numba, rocket_fft, scipy
 
-    from pipeline.study.context import load_context
 
     rows = []
     for case in CASES:
@@ -186,8 +183,6 @@ def coupling() -> list[dict]:
     the mode's vertical-lateral coupling destabilises it when kappa = Phi3 (Phi3 + mu Phi2) < 0
     (``solvers.stability.screen`` notes), i.e. for mu > mu_c = -Phi3 / Phi2 (Phi at the contact point,
     lateral positive toward the field side, vertical toward the ground)."""
-    from pipeline.study.context import load_context
-
     rows = []
     for case in CASES:
         w = load_context(case, radiation=False).wheel
@@ -202,9 +197,6 @@ def coupling() -> list[dict]:
 def scan(sim, gammas=SCAN_GAMMAS, mus=SCAN_MUS, with_screen: bool = True) -> list[dict]:
     """(gamma_y, mu) per position: the map's row, the limit-cycle measures and (``with_screen``) the
     screen's largest growth rate."""
-    from pipeline.study.context import load_context
-    from pipeline.study.screen import screen_rows
-
     rows = []
     for case in CASES:
         ctx = load_context(case, mus=mus)          # the curves at mus: the friction cache
@@ -219,8 +211,6 @@ def scan(sim, gammas=SCAN_GAMMAS, mus=SCAN_MUS, with_screen: bool = True) -> lis
 
 
 def save_csv(path: Path, rows: list[dict]) -> None:
-    from pipeline.store.atomic import atomic_write
-
     keys = list(rows[0])
     with atomic_write(path) as tmp, open(tmp, "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=keys, extrasaction="ignore")
@@ -237,8 +227,6 @@ def run_key() -> dict:
     """What the tables depend on: the code ``main`` reaches (``pipeline.store.code_hash``), the map study's
     file (its simulation settings) and the cases' contact and greens artifacts (size and time: a rebuilt
     artifact is a new input)."""
-    from pipeline.store.code_hash import code_key
-
     files = [paths.ROOT / "pipeline" / "studies" / "map.toml"]
     files += [paths.case_dir(c) / f"{n}.npz" for c in CASES for n in ("contact", "greens")]
     return {"code": code_key("pipeline.validation.limit_cycle_runs:main"),
@@ -249,11 +237,6 @@ def tables() -> Path:
     """The folder of the tables (build/studies/limit-cycle/), run again (``main``) when they are missing or
     their key (``run_key``) changed; the cases' contact and greens are built through Make first.  One run
     at a time (a lock file): a second caller waits and then finds them up to date."""
-    import fcntl
-    import json
-
-    from pipeline.validation.make import ensure_case
-
     for case in CASES:
         ensure_case(case)
     out = out_dir()
@@ -270,10 +253,6 @@ def tables() -> Path:
 
 def main() -> int:
     """Run the tables and write docs/validation/68_limit_cycle.md (always; ``tables()`` reuses them)."""
-    import fcntl
-
-    from pipeline.validation.make import ensure_case
-
     logging.basicConfig(level=logging.INFO, format="%(levelname)s %(name)s: %(message)s")
     for case in CASES:
         ensure_case(case)
@@ -285,11 +264,6 @@ def main() -> int:
 
 
 def _run() -> None:
-    import json
-
-    from pipeline.store.atomic import save_text
-    from pipeline.validation.limit_cycle_doc import write_doc
-
     t0 = time.perf_counter()
     sim = simulation()
     out = out_dir()

@@ -17,17 +17,19 @@ import math
 import shutil
 import sys
 from pathlib import Path
+import logging
+from pipeline.store import paths
+from pipeline.curve.curvefiles import radius_curve
+from pipeline.study.radius import design
+from pipeline.curve.stage import run_curve
+from pipeline.store.atomic import save_text, atomic_write
+from pipeline.validation.make import make_targets
 
 FRAGMENT = "94_line.md"
 
 
 def screen_against_time_loop(radii, base: str = "r150") -> list[dict]:
     """Per wheel of each radius: the screen's verdict (a growing wheel-mode pole) and the time loop's."""
-    from pipeline.store import paths
-    from pipeline.curve.curvefiles import radius_curve
-    from pipeline.study.radius import design
-    from pipeline.curve.stage import run_curve
-
     folder = paths.build() / "studies" / "radius" / "curves"
     out = []
     for R in radii:
@@ -94,18 +96,12 @@ runs the study through Make; `tests/study/test_line_validation.py` asserts the l
 
 
 def main(argv=None) -> int:
-    import logging
-
     ap = argparse.ArgumentParser(prog="python -m pipeline.validation.line_doc", description=__doc__.split("\n\n")[0])
     ap.add_argument("--study", default="metro_line")
     ap.add_argument("--radii", default="50,75,100,150,200,300,500,1000")
     args = ap.parse_args(argv)
     logging.basicConfig(level=logging.WARNING)
-    from pipeline.store import paths
-    from pipeline.store.atomic import save_text
 
-    from pipeline.store.atomic import atomic_write
-    from pipeline.validation.make import make_targets
 
     out = paths.build() / "studies" / args.study
     make_targets("study", STUDY=args.study)           # run, or resumed when done (its rows are kept)

@@ -19,6 +19,11 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.validation import contact_reference as ref
+from pipeline.config.case_profiles import read_profile
+from geometry.profiles import build_profile
+from geometry.contact_point import TrackRail, rigid_contact
+from pipeline.curve.curving import gauge_face
+from pipeline.store.atomic import save_figure, save_text
 
 ROOT = Path(__file__).resolve().parents[2]
 DOC = ROOT / "docs" / "validation"
@@ -31,16 +36,12 @@ REF_DEPTH_MM = 25.0  # CONTACT's head tabulated to this depth for the contact
 
 def shipped_profiles():
     """(wheel, rail) Profiles of the shipped tables s1002.csv and 60e1_new.csv."""
-    from pipeline.config.case_profiles import read_profile
-
     return read_profile("s1002")[0], read_profile("60e1_new")[0]
 
 
 def contact_profiles():
     """(wheel, rail) Profiles from CONTACT: an interpolating spline through its
     S1002 points, and its UIC60 head (arcs and side) every 0.02 mm of arc."""
-    from geometry.profiles import build_profile
-
     src = f"CONTACT {ref.CONTACT_COMMIT[:10]} " + ", ".join(Path(f).name for f in ref.CONTACT_FILES)
     wheel = build_profile(*ref.s1002_contact(), "wheel", "s1002 (CONTACT)", src, 0.0)
     rail = build_profile(*ref.uic60_contact_curve(REF_DEPTH_MM), "rail", "uic60 (CONTACT)", src, 0.0)
@@ -75,9 +76,6 @@ def heights(shipped, contact) -> dict:
 def centred_contact(wheel, rail) -> dict:
     """The rigid contact at zero lateral shift (mm, deg): the rail centre lies
     gauge/2 - Y_gauge from the track centre, the tape circle b2b/2 + 70 mm."""
-    from geometry.contact_point import TrackRail, rigid_contact
-    from pipeline.curve.curving import gauge_face
-
     track = TrackRail(rail, INCLINATION)
     g = gauge_face(track)
     c = 1e-3 * (0.5 * BACK_TO_BACK_MM + TAPE_FROM_BACK_MM - 0.5 * GAUGE_MM) + g
@@ -87,12 +85,11 @@ def centred_contact(wheel, rail) -> dict:
 
 
 def plot(shipped, contact, h: dict, path: Path) -> None:
-    import matplotlib
+    import matplotlib  # lazy: brings in matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: brings in matplotlib
 
-    from pipeline.store.atomic import save_figure
 
     fig, ax = plt.subplots(2, 2, figsize=(11, 7.5))
     wy, wz = ref.s1002_contact()
@@ -196,8 +193,6 @@ and 80.9 mm wide; it is not used.
 
 
 def main() -> int:
-    from pipeline.store.atomic import save_text
-
     save_text(report(), DOC / "15_profiles.md")
     print(f"wrote {DOC / '15_profiles.md'} and profiles_contact.png")
     return 0

@@ -28,12 +28,22 @@ import tempfile
 import time
 import tomllib
 from dataclasses import dataclass, field
+import fcntl
+import hashlib
+import json
 
 import numpy as np
 
 from geometry.outline import Segment
 
 from pipeline.store.paths import ROOT
+from geometry.wheel import wheel_segments
+from geometry.mesher import mesh_section, read_msh
+from solvers.wheel.axisym import HarmonicSolver
+from solvers.wheel.eigen import shift_invert
+from pipeline.store import paths
+from pipeline.store.atomic import save_text
+from pipeline.store.code_hash import code_key
 N_MAX = 3  # harmonics compared
 N_MODES = 2  # per harmonic
 TOL = 0.02  # relative frequency agreement required (finest 3D mesh)
@@ -72,8 +82,6 @@ def _douglas_peucker(pts: np.ndarray, tol: float) -> np.ndarray:
 def simplified_segments(tol: float = SIMPLIFY_TOL) -> list[Segment]:
     """C20 clamped outline with each segment's polyline thinned (end points
     kept, so the segments still join)."""
-    from geometry.wheel import wheel_segments
-
     return [Segment(s.name, _douglas_peucker(np.asarray(s.points, float), tol), s.size)
             for s in wheel_segments(c20_params())]
 
@@ -86,9 +94,6 @@ def outline_polygon(segs: list[Segment]) -> np.ndarray:
 # harmonic (2D) reference
 # ----------------------------------------------------------------------------
 def harmonic_solver(segs: list[Segment], size: float, E, nu, rho):
-    from geometry.mesher import mesh_section, read_msh
-    from solvers.wheel.axisym import HarmonicSolver
-
     segs = [Segment(s.name, s.points, size) for s in segs]
     with tempfile.TemporaryDirectory() as d:
         path = os.path.join(d, "section.msh")
@@ -104,9 +109,9 @@ def revolved_mesh(segs: list[Segment], h: float, geom_order: int = GEOM_ORDER):
     """Revolve the outline (x = r, z = Z, in the x-z plane) 360 degrees about
     the z axis (OCC), tetrahedral mesh of size h.  Returns (mesh, facet_tags,
     bore_tag)."""
-    import gmsh
-    from dolfinx.io import gmshio
-    from mpi4py import MPI
+    import gmsh  # lazy: brings in gmsh
+    from dolfinx.io import gmshio  # lazy: brings in dolfinx (and PETSc's signal handlers)
+    from mpi4py import MPI  # lazy: brings in mpi4py (and PETSc's signal handlers)
 
     poly = outline_polygon(segs)
     bore = next(s for s in segs if s.name == "bore").points
@@ -157,10 +162,10 @@ class Solid3D:
 
 
 def solve_3d(segs, h, E, nu, rho, nev, tol=1e-9) -> Solid3D:
-    import ufl
-    from dolfinx import fem
-    from dolfinx.fem.petsc import assemble_matrix
-    from petsc4py import PETSc
+    import ufl  # lazy: brings in ufl (and PETSc's signal handlers)
+    from dolfinx import fem  # lazy: brings in dolfinx (and PETSc's signal handlers)
+    from dolfinx.fem.petsc import assemble_matrix  # lazy: brings in dolfinx (and PETSc's signal handlers)
+    from petsc4py import PETSc  # lazy: brings in petsc4py (and PETSc's signal handlers)
 
     t0 = time.perf_counter()
     mesh, ft, bore_tag = revolved_mesh(segs, h)
@@ -186,7 +191,6 @@ def solve_3d(segs, h, E, nu, rho, nev, tol=1e-9) -> Solid3D:
     M = assemble_matrix(m_form)
     M.assemble()
 
-    from solvers.wheel.eigen import shift_invert
 
     eps_ = shift_invert(K, Mb, nev, -(2 * np.pi * 5.0) ** 2, tol, 200, mesh.comm)
     nconv = eps_.getConverged()
@@ -215,8 +219,8 @@ def solve_3d(segs, h, E, nu, rho, nev, tol=1e-9) -> Solid3D:
 def _section_sampler(hs, xyz):
     """Returns f(shape) giving (U_r, U_z, U_phi) at the (r, z) of the 3D dof
     points xyz, from a P1 nodal shape of the harmonic solver."""
-    from dolfinx import fem, geometry
-    from scipy.spatial import cKDTree
+    from dolfinx import fem, geometry  # lazy: brings in dolfinx (and PETSc's signal handlers)
+    from scipy.spatial import cKDTree  # lazy: brings in scipy
 
     r = np.hypot(xyz[:, 0], xyz[:, 1])
     q = np.column_stack([r, xyz[:, 2], np.zeros_like(r)])
@@ -365,14 +369,6 @@ def _intkeys(d: dict) -> dict:
 def study(sizes=SIZES_3D) -> Study:
     """``run_study(sizes)``, read from build/validation/wheel_3d.json when its key (the code ``run_study`` reaches,
     the C20's wheel file, the sizes) is the current one; run and stored otherwise (one run at a time: a lock)."""
-    import fcntl
-    import hashlib
-    import json
-
-    from pipeline.store import paths
-    from pipeline.store.atomic import save_text
-    from pipeline.store.code_hash import code_key
-
     key = {"code": code_key("pipeline.validation.revolved_wheel:run_study"), "sizes": list(sizes),
            "wheel": hashlib.sha256((ROOT / "geometry" / "wheels" / "c20.toml").read_bytes()).hexdigest()[:16]}
     path = paths.build() / "validation" / "wheel_3d.json"

@@ -9,6 +9,12 @@ from __future__ import annotations
 import sys
 
 import numpy as np
+from pipeline.validation.cnossos_cases import CASES, ours, NEW, OLD
+from pipeline.config.cnossos import rolling_power_components
+from postprocess.listening.listener import a_weighting
+from solvers.radiation.rolling_cnossos import F_CENTRE_NOMINAL as F
+from pipeline.store.atomic import save_figure, save_text
+from pipeline.store.paths import ROOT
 
 FRAGMENT = "95_rolling_cnossos.md"
 FIGURE = "rolling_cnossos.png"
@@ -36,14 +42,11 @@ def _offset(case) -> float:
 
 
 def results():
-    from pipeline.validation.cnossos_cases import CASES, ours
     return [(c, ours(c), np.array(c.expected)) for c in CASES]
 
 
 def examples():
     """L_W,0 per vehicle, total and A-weighted, for the example vehicle types on the example track."""
-    from pipeline.config.cnossos import rolling_power_components
-    from postprocess.listening.listener import a_weighting
     out = []
     for veh, v in EXAMPLES:
         comp = rolling_power_components(veh, EXAMPLE_TRACK, v)
@@ -56,8 +59,6 @@ def examples():
 
 
 def fragment(res, ex) -> str:
-    from solvers.radiation.rolling_cnossos import F_CENTRE_NOMINAL as F
-    from pipeline.validation.cnossos_cases import NEW, OLD
     worst = max(float(np.max(np.abs(g - w))) for _, g, w in res)
     summary = "\n".join(f"| {c.name} | `{c.source[0].rsplit('/', 1)[1]}` @ {c.source[1][:8]} | {_label(c)} | "
                         f"{'L_W,0 per vehicle' if c.per_vehicle else 'per-metre L_W of the test'} | "
@@ -116,11 +117,10 @@ test reaches those speeds. Written by `python -m pipeline.validation.rolling_cno
 
 
 def figure(res):
-    import matplotlib
+    import matplotlib  # lazy: brings in matplotlib
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: brings in matplotlib
 
-    from solvers.radiation.rolling_cnossos import F_CENTRE_NOMINAL as F
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.2))
     for (c, g, w), col in zip([r for r in res if r[0].name in DETAILED], ("C0", "C1", "C2", "C3")):
         shift = _offset(c)
@@ -139,8 +139,6 @@ def figure(res):
 
 
 def main(argv=None) -> int:
-    from pipeline.store.atomic import save_figure, save_text
-    from pipeline.store.paths import ROOT
     res = results()
     out = ROOT / "docs" / "validation"
     save_figure(figure(res), out / FIGURE, dpi=110)

@@ -63,7 +63,7 @@ def growth_envelope(t, x, window: float = ENVELOPE_WINDOW_S, reference: float = 
     widened to 3 periods of its aliased frequency.  Raises ValueError when the
     history has no oscillation at its end, or the tone aliases to below
     3 / ``reference`` Hz (no envelope can be told from the mean force)."""
-    from scipy.ndimage import uniform_filter1d
+    from scipy.ndimage import uniform_filter1d  # lazy: brings in scipy
 
     t, x = np.asarray(t, float), np.asarray(x, float)
     if t.size < 8 or t.shape != x.shape:
@@ -179,7 +179,7 @@ def full_scale_sine_level(pa_per_count: float, p_ref: float = 20e-6) -> float:
 def wav_bytes(samples, fs: int = FS, comment: str = "") -> bytes:
     """A mono 16-bit PCM WAV (scipy.io.wavfile) with the ``comment`` in a LIST/INFO
     ICMT chunk (ASCII; readers that do not know LIST skip it)."""
-    from scipy.io import wavfile
+    from scipy.io import wavfile  # lazy: brings in scipy
 
     buf = io.BytesIO()
     wavfile.write(buf, int(fs), np.asarray(samples, np.int16))

@@ -98,7 +98,7 @@ def directivity_amplitude(kind: str, cos_theta):
 def air_attenuation(f) -> np.ndarray:
     """Pure-tone air absorption coefficient alpha(f) (dB/m), ISO 9613-1 at the AIR
     conditions (via pyfar); frequencies below 50 Hz take the 50 Hz value."""
-    import pyfar as pf
+    import pyfar as pf  # lazy: brings in pyfar
 
     f = np.atleast_1d(np.asarray(f, float))
     fu, inv = np.unique(np.maximum(f, 50.0), return_inverse=True)  # pyfar wants increasing frequencies
@@ -145,7 +145,7 @@ def level(p2) -> np.ndarray:
 
 def a_weighting(f) -> np.ndarray:
     """A-weighting A(f) (dB), IEC 61672-1 formula E.6 (pyfar); -inf at f <= 0."""
-    import pyfar as pf
+    import pyfar as pf  # lazy: brings in pyfar
 
     f = np.atleast_1d(np.asarray(f, float))
     out = np.full(f.shape, -np.inf)
@@ -166,7 +166,7 @@ class Bands:
 
 def third_octave_bands(f_lo: float = 10.0, f_hi: float = 20000.0) -> Bands:
     """The 1/3-octave bands (IEC 61260-1, base 10) overlapping [f_lo, f_hi] (Hz)."""
-    import pyfar as pf
+    import pyfar as pf  # lazy: brings in pyfar
 
     nominal = pf.constants.fractional_octave_frequencies_nominal(3, (f_lo, f_hi))
     centre, lower, upper = pf.constants.fractional_octave_frequencies_exact(3, (f_lo, f_hi))

@@ -157,11 +157,11 @@ def gallery_figure(images: Sequence, labels: Sequence[str], ncols: int = 4):
     and one colour bar for all at the top, readable at the gallery's size (every
     render has the same scale, 0-1); matplotlib's Agg canvas, no pyplot state.  Save
     it with ``facecolor="white"``."""
-    from matplotlib import colormaps
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.cm import ScalarMappable
-    from matplotlib.colors import Normalize
-    from matplotlib.figure import Figure
+    from matplotlib import colormaps  # lazy: brings in matplotlib
+    from matplotlib.backends.backend_agg import FigureCanvasAgg  # lazy: brings in matplotlib
+    from matplotlib.cm import ScalarMappable  # lazy: brings in matplotlib
+    from matplotlib.colors import Normalize  # lazy: brings in matplotlib
+    from matplotlib.figure import Figure  # lazy: brings in matplotlib
 
     labels = [str(s) for s in labels]
     if len(images) == 0:

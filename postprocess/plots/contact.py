@@ -7,7 +7,7 @@ import numpy as np
 
 def friction_curves_figure(a: dict, title: str):
     """F2/F3 vs slip velocity for every curve of the contact (the regularized friction curves)."""
-    import matplotlib
+    import matplotlib  # lazy: brings in matplotlib
     from matplotlib.figure import Figure  # no pyplot (its import is half a second of a stage's time)
 
     fig = Figure(figsize=(6.5, 4))

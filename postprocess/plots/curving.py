@@ -64,7 +64,7 @@ def _section(ax, prof, trk, veh, ws, side, name):
 
 def bogie_in_curve(sol, veh, trk, prof, scale: float = 20.0):
     """The plan view of the bogie in the curve and the four wheel/rail sections."""
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: brings in matplotlib
 
     fig = plt.figure(figsize=(11, 7.5))
     gs = fig.add_gridspec(2, 4, height_ratios=[1.3, 1])
@@ -78,7 +78,7 @@ def bogie_in_curve(sol, veh, trk, prof, scale: float = 20.0):
 def radius_sweep(series: dict):
     """Leading and trailing wheelsets' shift and angle of attack over the radius.  ``series``:
     vehicle name -> dict of arrays R, y1, y2, psi1, psi2 (m, rad), flange1 (bool) and y_f (m)."""
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: brings in matplotlib
 
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4.2))
     for k, (name, s) in enumerate(series.items()):

@@ -7,10 +7,10 @@ import numpy as np
 from postprocess.limit_cycle_measures import curve
 
 def _plt():
-    import matplotlib
+    import matplotlib  # lazy: brings in matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: brings in matplotlib
 
     return plt
 

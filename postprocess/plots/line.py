@@ -14,10 +14,10 @@ COLOURS = ("tab:red", "tab:blue", "tab:green", "tab:purple", "tab:orange", "tab:
 
 
 def _plt():
-    import matplotlib
+    import matplotlib  # lazy: brings in matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: brings in matplotlib
 
     return plt
 
@@ -39,7 +39,7 @@ def _quiet_floor(ax, floor: float, levels: np.ndarray, pad_top: float) -> None:
     """The level axis with a floor for quiet curves: the level ticks over the squealing levels (none of
     them at or below the floor), the floor's tick labelled "quiet" and a dotted line between the two, so
     that a quiet curve is not read as a level.  ``levels``: the squealing curves' levels (may be empty)."""
-    from matplotlib.ticker import MaxNLocator
+    from matplotlib.ticker import MaxNLocator  # lazy: brings in matplotlib
 
     if levels.size:
         lo, hi = float(np.min(levels)), float(np.max(levels))

@@ -10,10 +10,10 @@ from solvers.constants import SQUEAL_LEVEL_DB
 
 def listening_figure(a: dict, case: str):
     """``a``: the arrays of listen.npz.  Returns the figure."""
-    import matplotlib
+    import matplotlib  # lazy: brings in matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: brings in matplotlib
 
     fig, (ax, ax2) = plt.subplots(2, 1, figsize=(9, 8), gridspec_kw={"height_ratios": [2, 1]})
     nom = a["band_nominal"]

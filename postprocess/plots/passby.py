@@ -6,10 +6,10 @@ import numpy as np
 
 def passby_figure(a: dict, title: str):
     """L_AF(t) (``a``: passby_<tag>.npz's arrays) with L_pAeq and L_AFmax marked."""
-    import matplotlib
+    import matplotlib  # lazy: brings in matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: brings in matplotlib
 
     fig, ax = plt.subplots(figsize=(7.5, 3.8))
     ax.plot(a["t_F"], a["L_AF"], color="C0", label="L_AF(t) (F time weighting, 125 ms)")

@@ -15,10 +15,10 @@ def radiation_figure(a: dict, case: str):
     """Three panels: |F2|, |F3| spectra (RMS) with the tones; the sound power per
     bin/tone; the unit-force sound power (lateral, radial).  ``a``: the arrays of
     radiate.npz.  Returns the figure."""
-    import matplotlib
+    import matplotlib  # lazy: brings in matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: brings in matplotlib
 
     fig, axs = plt.subplots(3, 1, figsize=(9, 10), sharex=True)
     ff = a["force_f"]

@@ -9,10 +9,10 @@ def _db(G):
 
 def receptance_figure(a: dict, name: str):
     """The usual rail receptance figure: |G| in dB re 1 m/N and phase."""
-    import matplotlib
+    import matplotlib  # lazy: brings in matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: brings in matplotlib
 
     f, G = a["f_hz"], a["G"][:, 0]  # x = 0: point receptances
     fig, axs = plt.subplots(3, 2, figsize=(11, 9), sharex=True)
@@ -34,10 +34,10 @@ def receptance_figure(a: dict, name: str):
 
 def dispersion_figure(a: dict, name: str):
     """Dispersion curves f(k) of the free and supported rail, both families."""
-    import matplotlib
+    import matplotlib  # lazy: brings in matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: brings in matplotlib
 
     k = a["disp_k"]
     fig, axs = plt.subplots(1, 2, figsize=(11, 4.5), sharey=True)

@@ -2,17 +2,17 @@
 from __future__ import annotations
 
 import numpy as np
+from solvers.spectra import amplitude_spectrum
 
 
 def forces_figure(res, m: dict, case: str):
     """F2 history, the last 20 ms of F2 and F3, the F2 spectrum (``res``: the
     interaction result; ``m``: its squeal measures)."""
-    import matplotlib
+    import matplotlib  # lazy: brings in matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: brings in matplotlib
 
-    from solvers.spectra import amplitude_spectrum
 
     fig, axs = plt.subplots(3, 1, figsize=(9, 8))
     axs[0].plot(res.t, res.F[:, 1] / 1e3, lw=0.5)

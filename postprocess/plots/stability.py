@@ -7,10 +7,10 @@ import numpy as np
 
 def screen_figure(a: dict, case: str, c: dict):
     """Growth rate against frequency of every pole (``a``: stability.npz; ``c``: the case)."""
-    import matplotlib
+    import matplotlib  # lazy: brings in matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: brings in matplotlib
 
     fig, ax = plt.subplots(figsize=(8, 4.5))
     f, s, lab = a["f_hz"], a["sigma"], a["label"]
@@ -51,10 +51,10 @@ def show_every_pole(ax, f, s, lab) -> None:
 
 def map_figure(rows: list[dict], gammas, mus, case: str):
     """The largest growth rate over the (gamma_y, mu) grid of one case."""
-    import matplotlib
+    import matplotlib  # lazy: brings in matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: brings in matplotlib
 
     S = np.full((len(mus), len(gammas)), np.nan)
     labels = {}

@@ -8,10 +8,10 @@ from solvers.constants import SQUEAL_F_MIN_HZ, SQUEAL_LEVEL_DB
 
 
 def _plt():
-    import matplotlib
+    import matplotlib  # lazy: brings in matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: brings in matplotlib
 
     return plt
 
@@ -64,9 +64,9 @@ def map_figure(gamma_y, mu, fields: dict, title: str, level: float = SQUEAL_LEVE
     modes; oscillations below SQUEAL_F_MIN_HZ marked as the wheelset's, not squeal); L_W; the sound's
     frequency.  fields[name] (len(mu), len(gamma_y)), NaN where undefined (grey).  The creepage axis
     is signed (gamma_y < 0: the inner wheel of an under-radial leading wheelset)."""
-    from matplotlib.colors import BoundaryNorm, ListedColormap, LogNorm
-    from matplotlib.patches import Patch, Rectangle
-    from matplotlib.ticker import FuncFormatter
+    from matplotlib.colors import BoundaryNorm, ListedColormap, LogNorm  # lazy: brings in matplotlib
+    from matplotlib.patches import Patch, Rectangle  # lazy: brings in matplotlib
+    from matplotlib.ticker import FuncFormatter  # lazy: brings in matplotlib
 
     plt = _plt()
     fig, axs = plt.subplots(2, 2, figsize=(12, 8), sharex=True, sharey=True)

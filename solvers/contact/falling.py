@@ -23,7 +23,7 @@ from __future__ import annotations
 import math
 import numpy as np
 
-from solvers.contact.friction import monotone_slopes, mu_rf
+from solvers.contact.friction import monotone_slopes, mu_rf, rf_curve
 
 S_INF = 1e3          # m/s: where a law's asymptote is read (``law.mu(S_INF)``)
 
@@ -65,8 +65,6 @@ def with_law_tail(s, mu, slopes, law):
 def tang_curve(p3, dx, dy, v, law, E=210e9, nu=0.3):
     """The global curve (s, mu_RF, slopes) of ``law`` on the contact with pressures p3: TANG's
     (``friction.rf_curve``) with the law's tail beyond the last node."""
-    from solvers.contact.friction import rf_curve
-
     cur = rf_curve(p3, dx, dy, v, law, E, nu)
     return with_law_tail(cur.s, cur.mu_rf, cur.slope, law)
 

@@ -31,6 +31,7 @@ import numpy as np
 from solvers.contact.influence import shear_modulus
 
 from solvers.curving.hertz import hertz_semi_axes
+from solvers.contact.tang import tang_steady
 
 RATIOS = np.geomspace(0.1, 10.0, 13)   # a/b where the coefficients are computed
 TANG_ELEMENTS = 40                     # elements across each semi-axis pair (the ellipse's box)
@@ -39,8 +40,6 @@ TANG_ELEMENTS = 40                     # elements across each semi-axis pair (th
 def tang_coefficients(ratio: float, E: float = 210e9, nu: float = 0.3, n: int = TANG_ELEMENTS):
     """(C11, C22, C23) from steady TANG on the Hertz pressure of an ellipse a/b = ratio (no slip:
     mu large, creepages 1e-6 and spin 1e-4 1/m on a c = 5 mm patch)."""
-    from solvers.contact.tang import tang_steady
-
     c = 5e-3
     a, b = c * math.sqrt(ratio), c / math.sqrt(ratio)
     dx, dy = 2 * a / n, 2 * b / n
@@ -58,7 +57,7 @@ def tang_coefficients(ratio: float, E: float = 210e9, nu: float = 0.3, n: int = 
 @functools.lru_cache(maxsize=4)
 def kalker_table(E: float = 210e9, nu: float = 0.3):
     """Cubic splines C_ij(log(a/b)) over RATIOS, computed with TANG once per process."""
-    from scipy.interpolate import CubicSpline
+    from scipy.interpolate import CubicSpline  # lazy: brings in scipy
 
     C = np.array([tang_coefficients(r, E, nu) for r in RATIOS])
     return tuple(CubicSpline(np.log(RATIOS), C[:, k]) for k in range(3))

@@ -24,14 +24,13 @@ from __future__ import annotations
 import numpy as np
 
 from solvers.curving.roots import newton, safe_residual
+from solvers.curving.wheelrail import tread_jumps
 
 PLATEAU = 1.0   # width (in w, mm) of a two-point tread contact's load transfer
 
 
 def _events(prof, trk, y_f):
     """The tread jumps of both wheels within the flange shifts: [(y_j, side, y^W before, y^W after)]."""
-    from solvers.curving.wheelrail import tread_jumps
-
     ev = [(y, s, a, b) for s in (1, -1) for y, a, b in
           tread_jumps(prof.wheel, prof.rail, trk.c, prof.edge, s, min(y_f, 0.04))]
     return sorted(ev)
@@ -91,7 +90,7 @@ def semismooth(fun_of, starts, y_f, prof, veh, trk, law, n_ws):
     """Equilibria from ``starts`` ((z, flanges) pairs of the active-set form: where it stalled, its
     starting points): [(z, r, flanges, keep, 0), ...], each accepted (residual <= 1e-8 of Q0); after the
     first, one more start is tried, so that a second equilibrium (another branch) can be reported."""
-    from scipy.optimize import root
+    from scipy.optimize import root  # lazy: brings in scipy
 
     cp = Complementarity(fun_of, n_ws, y_f, prof, veh, trk, law)
     fun = cp.residual

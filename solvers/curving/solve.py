@@ -17,6 +17,7 @@ with the unilateral contacts as one continuous complementarity system, before th
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+import dataclasses
 
 import numpy as np
 
@@ -163,7 +164,7 @@ def _starts(veh, trk, lam0, n_ws, y_f):
 def _equilibrium(fun_of, z, flanges, y_f, prof, veh, trk, law):
     """Equilibrium for a given start: the flange's active set iterated to a stable set.
     Returns (z, residual, flanges, [states, y_b, psi_b, frame residual], passes)."""
-    from scipy.optimize import root
+    from scipy.optimize import root  # lazy: brings in scipy
 
     seen = {tuple(flanges)}
     for passes in range(1, MAX_ACTIVE + 1):
@@ -192,8 +193,6 @@ def _equilibrium(fun_of, z, flanges, y_f, prof, veh, trk, law):
 def _continuation(fun_of, y_f, prof, veh, trk, law, lam0, n_ws, steps):
     """Equilibrium continued in curvature from a ten times larger radius: steps of
     (1/R - 1/(10 R)) / steps, halved (down to 1/64 of that) when a step does not converge."""
-    import dataclasses
-
     k0, k1 = 0.1 / trk.radius, 1.0 / trk.radius
     far = dataclasses.replace(trk, radius=1.0 / k0)
     z, r, flanges, keep, passes = _equilibrium(fun_of, _start(veh, far, lam0, n_ws, y_f), [0] * n_ws, y_f, prof,

@@ -183,7 +183,7 @@ def flange_gap(wheel, rail_t, shift: float, edge: float) -> float:
 def flange_shift(wheel, rail_t, c: float, edge: float, span: float = 0.04) -> float:
     """Wheelset shift y (m, toward this wheel's field side) at which the flange touches: the
     root of flange_gap(c + y) = 0 on [-10 mm, span] (brentq); inf when there is none."""
-    from scipy.optimize import brentq
+    from scipy.optimize import brentq  # lazy: brings in scipy
 
     g = lambda y: flange_gap(wheel, rail_t, c + y, edge)  # noqa: E731
     ys = np.linspace(-0.01, span, 101)
@@ -201,7 +201,7 @@ def tread_jumps(wheel, rail_t, c: float, edge: float, side: int, y_max: float, s
     both points equally low there): [(y, y^W before, y^W after), ...] in increasing y, "before"
     and "after" in the sense of increasing y.  Found as jumps of more than ``jump`` in y^W on a
     grid of ``step`` and refined by brentq on the two points' separations' difference."""
-    from scipy.optimize import brentq
+    from scipy.optimize import brentq  # lazy: brings in scipy
 
     ys = np.arange(-y_max, y_max, step)
     yw = np.array([zone_point(wheel, rail_t, c + side * v, "tread", edge).y_wheel for v in ys])

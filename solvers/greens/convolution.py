@@ -32,7 +32,7 @@ def convolve_direct(g, F):
 def convolve_fft(g: np.ndarray, F: np.ndarray) -> np.ndarray:
     """The same as ``convolve_direct`` by overlap-add FFT convolution
     (scipy.signal.oaconvolve picks the block length): exact to rounding."""
-    from scipy.signal import oaconvolve
+    from scipy.signal import oaconvolve  # lazy: brings in scipy
 
     g = np.asarray(g, float)
     F = np.asarray(F, float)

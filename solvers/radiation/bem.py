@@ -27,7 +27,7 @@ from scipy.special import spherical_jn, spherical_yn
 
 
 def _api():
-    import bempp_cl.api as api
+    import bempp_cl.api as api  # lazy: brings in bempp_cl
 
     return api
 

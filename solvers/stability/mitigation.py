@@ -23,6 +23,7 @@ import math
 from typing import Callable, NamedTuple
 
 import numpy as np
+from solvers.study import Outcome
 
 
 def coulomb_curve_at(s_nodes, mu_nodes, slopes, mu_ref: float, mu: float):
@@ -92,7 +93,5 @@ def screen_outcome(roots, level: float, keep=None):
     """The damping procedure's ``Outcome`` from the screen's poles: a growing pole at a wheel
     mode squeals (L_F2 reported as ``level``, the squeal criterion's threshold, and its
     frequency as the dominant one); none: quiet (L_F2 = -inf, frequency NaN)."""
-    from solvers.study import Outcome
-
     r = growing_wheel_root(roots, keep)
     return Outcome(float(level), float(r.f_hz)) if r is not None else Outcome(-math.inf, math.nan)

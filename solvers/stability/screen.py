@@ -136,7 +136,7 @@ def track_roots(model: LinearModel, basis: Basis | None = None, polish: bool = T
     ``polish`` one Newton step on the grid's values (D and its s-derivative by central differences
     along the frequency axis, D being analytic) instead of the secant on the exact D."""
     b = basis if basis is not None else Basis(model)
-    from scipy.ndimage import minimum_filter
+    from scipy.ndimage import minimum_filter  # lazy: brings in scipy
 
     D = _det(model, b.Ygrid, b.Z)
     L = np.log(np.abs(D))
@@ -181,7 +181,7 @@ def operating_point(model: LinearModel, contact, *, v: float, gamma_y: float, ga
     """``model`` at another friction curve / creepage: mu0, dmu from ``contact``'s curve at the
     steady slip |w|, w = (gamma_x + L1 spin, gamma_y + L2 spin) v, and its direction (the
     structures, k_c and the compliances kept; module notes)."""
-    from solvers.contact.friction import mu_and_slope
+    from solvers.contact.friction import mu_and_slope  # lazy: brings in rocket_fft, scipy
 
     w1 = (gamma_x + spin_length[0] * spin) * v
     w2 = (gamma_y + spin_length[1] * spin) * v
@@ -197,10 +197,10 @@ def linearise(wheel, rail_kernel: np.ndarray, contact, *, dt: float, v: float, g
     wheel: ``interaction.WheelModes``; rail_kernel: the moving Green's function (K, 2, 2);
     contact: ``interaction.ContactModel``; dt (s), v (m/s), gamma_y (< 0), preload F3 (N),
     gamma_x, spin (1/m) as in the time loop."""
-    from solvers.contact.compliance import table_compliance
-    from solvers.contact.norm import table_force
-    from solvers.timeloop.interaction import static_approach
-    from solvers.timeloop.driver import spin_length
+    from solvers.contact.compliance import table_compliance  # lazy: brings in scipy
+    from solvers.contact.norm import table_force  # lazy: brings in scipy
+    from solvers.timeloop.interaction import static_approach  # lazy: brings in rocket_fft, scipy
+    from solvers.timeloop.driver import spin_length  # lazy: brings in rocket_fft, scipy
 
     if gamma_y >= 0:
         raise ValueError(f"linearise: gamma_y = {gamma_y} must be negative (F2 > 0 on the rail)")

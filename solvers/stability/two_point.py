@@ -65,8 +65,8 @@ def linearise_two(wheel, rail_blocks, contact, second, *, dt: float, v: float, g
     """The TwoPointLinear of ``simulate_two``'s steady rolling state (same arguments: wheel
     WheelModes at the first point, rail_blocks (g_aa, g_ab, g_ba, g_bb), contact the first
     point's ContactModel, second a ``two_point_driver.SecondPoint``; preload the vertical load)."""
-    from solvers.timeloop.two_point import two_point_filter
-    from solvers.timeloop.two_point_driver import static_state
+    from solvers.timeloop.two_point import two_point_filter  # lazy: brings in rocket_fft, scipy
+    from solvers.timeloop.two_point_driver import static_state  # lazy: brings in rocket_fft, scipy
 
     xa, xb, Na, Nb = static_state(contact, second.contact, preload, second.separation, second.cos_a, second.cos_b)
     gxb = gamma_x if second.gamma_x is None else float(second.gamma_x)
@@ -80,9 +80,9 @@ def linearise_two(wheel, rail_blocks, contact, second, *, dt: float, v: float, g
 
 def point_linear(contact, app: float, F3: float, gx: float, gy: float, v: float) -> PointLinear:
     """PointLinear of a ContactModel at approach ``app`` with normal force F3 and creepages."""
-    from solvers.contact.compliance import table_compliance
-    from solvers.contact.friction import mu_and_slope
-    from solvers.contact.norm import table_force
+    from solvers.contact.compliance import table_compliance  # lazy: brings in scipy
+    from solvers.contact.friction import mu_and_slope  # lazy: brings in rocket_fft, scipy
+    from solvers.contact.norm import table_force  # lazy: brings in scipy
 
     if F3 <= 0.0:
         return PointLinear(0.0, 0.0, 0.0, 0.0, 1.0, np.zeros(2), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)

@@ -16,6 +16,9 @@ from solvers.timeloop.inputs import DEFAULT_KICK, EPS_SLIP, MAX_DURATION, Contac
 from solvers.timeloop.kernel import run_point
 from solvers.timeloop.result import InteractionResult, assemble, record
 from solvers.timeloop.stop import StopRule, windows
+from solvers.contact.norm import NormTable, table_pressure
+from solvers.contact.spin import spin_lengths
+from solvers.timeloop.reference import run_reference
 
 
 @dataclass(frozen=True)
@@ -120,8 +123,6 @@ def spin_length(contact: ContactModel, xi3_static: float, v: float) -> np.ndarra
         return np.asarray(contact.spin_length, float).reshape(2)
     if contact.pressure_nodes is None or contact.dx is None or contact.dy is None:
         raise ValueError("spin needs the contact's spin_length or its pressure table (pressure_nodes, dx, dy)")
-    from solvers.contact.norm import NormTable, table_pressure
-    from solvers.contact.spin import spin_lengths
 
     table = NormTable(contact.xi3_nodes, contact.F3_nodes, contact.q_nodes, contact.pressure_nodes,
                       contact.pressure_nodes > 0)
@@ -155,8 +156,6 @@ def simulate(wheel: WheelModes | None, rail_kernel: np.ndarray | None, contact: 
     if s.tangential == "point" and s.normal == "table" and s.compliance == "table" and s.driver == "auto":
         done, reason = run_point(filt, rc, p, point_tables(contact), rec, win)
     else:
-        from solvers.timeloop.reference import run_reference          # (Kalker's TANG, NORM: imported when needed)
-
         done, reason, F_ref = run_reference(filt, rc, p, contact, rec, win, tangential=s.tangential,
                                             normal=s.normal, compliance=s.compliance, start=s.start)
         p = p._replace(F_ref=F_ref)

@@ -11,7 +11,8 @@ from typing import NamedTuple
 import numpy as np
 
 from solvers.contact.friction import mu_rf
-from solvers.contact.norm import table_force
+from solvers.contact.norm import table_force, norm_table
+from solvers.contact.compliance import compliance_table
 
 MAX_DURATION = 8.0          # s, SPEC 6
 EPS_SLIP = 1e-9             # m/s, regularisation of the slip direction (curves with mu(0) > 0)
@@ -98,7 +99,7 @@ def contact_model(arrays, law) -> ContactModel:
     curve = f("rf_s")[i, :n].copy(), f("rf_mu")[i, :n].copy(), f("rf_slope")[i, :n].copy()
     solver_law = _solver_law(law)
     if solver_law is not None:                 # issue 26: a falling law's decay beyond the last node
-        from solvers.contact.falling import with_law_tail
+        from solvers.contact.falling import with_law_tail  # here: Make's DEPS of the module's other entry points stay without it
 
         curve = with_law_tail(*curve, solver_law)
     return ContactModel(f("xi3_nodes"), f("q_nodes"), f("A1_nodes"), f("A2_nodes"), *curve,
@@ -125,9 +126,6 @@ def refine_table(contact: ContactModel, xi3_nodes) -> ContactModel:
     falls below 1e-6 for a node step of ~5e-4 of the static approach (coarser steps leave ~1e-6
     where a grid element enters the patch and F3(xi3) has a kink): use it to make the table mode
     reproduce per-step NORM to 1e-6 over the range a run visits."""
-    from solvers.contact.compliance import compliance_table
-    from solvers.contact.norm import norm_table
-
     if contact.gap is None or contact.dx is None or contact.dy is None:
         raise ValueError("refine_table needs the contact's gap, dx and dy")
     new = np.sort(np.asarray(xi3_nodes, float))
@@ -199,7 +197,6 @@ def static_approach(contact: ContactModel, preload: float) -> float:
     return 0.5 * (lo + hi)
 
 
-
 def steady_forces(contact: ContactModel, v: float, gamma_x: float, gamma_y: float, F3: float,
                   eps: float = 0.0) -> np.ndarray:
     """Steady rolling forces of the point-contact model at rigid slip w = (gamma_x, gamma_y) v:
@@ -209,8 +206,6 @@ def steady_forces(contact: ContactModel, v: float, gamma_x: float, gamma_y: floa
     r = math.sqrt(s * s + eps * eps)
     q = mu_rf(s, contact.s_nodes, contact.mu_nodes, contact.slopes) / r if r > 0 else 0.0
     return np.array([-F3 * q * w1, -F3 * q * w2, F3])
-
-
 
 
 def per_step(a, n_steps: int) -> np.ndarray:

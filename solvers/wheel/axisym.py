@@ -30,6 +30,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from solvers.wheel.eigen import eigenvalues, shift_invert
 
 
 @dataclass
@@ -63,9 +64,9 @@ class HarmonicSolver:
 
     def __init__(self, mesh, facet_tags, E, nu, rho, degree=2, clamped=(), axis=None,
                  plane=None, plane_type="symmetric", springs=()):
-        import ufl
-        from dolfinx import fem
-        from petsc4py import PETSc
+        import ufl  # lazy: brings in ufl (and PETSc's signal handlers)
+        from dolfinx import fem  # lazy: brings in dolfinx (and PETSc's signal handlers)
+        from petsc4py import PETSc  # lazy: brings in petsc4py (and PETSc's signal handlers)
 
         self.mesh, self.facet_tags = mesh, facet_tags
         self.rho = rho
@@ -115,8 +116,8 @@ class HarmonicSolver:
         self._setup_output()
 
     def _setup_output(self):
-        from dolfinx import fem
-        import ufl
+        from dolfinx import fem  # lazy: brings in dolfinx (and PETSc's signal handlers)
+        import ufl  # lazy: brings in ufl (and PETSc's signal handlers)
 
         mesh = self.mesh
         P1 = fem.FunctionSpace(mesh, ufl.VectorElement("Lagrange", mesh.ufl_cell(), 1, dim=3))
@@ -126,8 +127,8 @@ class HarmonicSolver:
         self._u1 = fem.Function(P1)
 
     def _bcs(self, n):
-        from dolfinx import fem
-        from petsc4py import PETSc
+        from dolfinx import fem  # lazy: brings in dolfinx (and PETSc's signal handlers)
+        from petsc4py import PETSc  # lazy: brings in petsc4py (and PETSc's signal handlers)
 
         V, ft = self.V, self.facet_tags
         fdim = self.mesh.topology.dim - 1
@@ -159,9 +160,8 @@ class HarmonicSolver:
         small negative shift (so rigid-body modes do not make K - sigma M
         singular).  Requested count grows until the highest converged
         eigenvalue exceeds fmax."""
-        from dolfinx.fem.petsc import assemble_matrix
+        from dolfinx.fem.petsc import assemble_matrix  # lazy: brings in dolfinx (and PETSc's signal handlers)
 
-        from solvers.wheel.eigen import eigenvalues, shift_invert
 
         self.n_const.value = float(n)
         self.tors.value = 0.0 if n == 0 else 1.0

@@ -15,8 +15,8 @@ def shift_invert(K, M, nev: int, sigma: float, tol: float = 1e-10, max_it: int =
     """A solved SLEPc EPS (generalised Hermitian, shift-invert about sigma with
     a MUMPS LU) asking for the nev eigenvalues nearest sigma.  The caller
     reads the pairs and destroys it."""
-    from petsc4py import PETSc
-    from slepc4py import SLEPc
+    from petsc4py import PETSc  # lazy: brings in petsc4py (and PETSc's signal handlers)
+    from slepc4py import SLEPc  # lazy: brings in slepc4py (and PETSc's signal handlers)
 
     eps = SLEPc.EPS().create(comm or PETSc.COMM_SELF)
     eps.setOperators(K, M)

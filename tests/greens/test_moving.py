@@ -3,8 +3,7 @@ foundation transfer receptance (pipeline/validation/references/greens.py)."""
 import numpy as np
 import pytest
 
-from solvers.greens.kernels import decayed, green_from_receptance, moving_green
-from solvers.greens.kernels import frequency_grid
+from solvers.greens.kernels import decayed, green_from_receptance, moving_green, frequency_grid
 from pipeline.validation.references.greens import (DT, LATERAL, VERTICAL, V, beam_impulse, beam_moving_receptance, beam_receptance, beam_transfer,
                           kernel_spectrum, pointwise_error)
 

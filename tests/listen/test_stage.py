@@ -12,8 +12,7 @@ import numpy as np
 import pytest
 
 from pipeline.store import artifacts, paths
-from pipeline.stages import listen as LS
-from pipeline.stages import radiate as RS
+from pipeline.stages import listen as LS, radiate as RS
 from pipeline.config.loader import ConfigError
 from pipeline.validation.references import wavcheck as WC
 from tests.radiation.test_stage import DT, REAL, _cached_load_npz, mode, no_plot

@@ -6,8 +6,7 @@ docs/validation/15_profiles.md reports the same numbers."""
 import numpy as np
 import pytest
 
-from pipeline.validation import contact_reference as ref
-from pipeline.validation import profiles_doc as doc
+from pipeline.validation import contact_reference as ref, profiles_doc as doc
 
 
 @pytest.fixture(scope="module")

@@ -29,7 +29,7 @@ import numpy as np
 
 from solvers.contact.friction_laws import get_friction_law
 from solvers.contact.norm import approach_for_load
-from solvers.contact.tang import tang_steady
+from solvers.contact.tang import tang_steady, tang_transient
 from pipeline.validation.references.contact import grid
 
 G28, NU28 = 82e9, 0.28
@@ -183,8 +183,6 @@ CONTACT_TRANSIENT = [
 def transient_run(law_or_mu, contact=None):
     """The project's transient TANG over CONTACT's 40 steps: array (40, 4) as creep_curves (forces
     normalised by the law's mu(0) FN)."""
-    from solvers.contact.tang import tang_transient
-
     X, Y, ns = contact or hertz_contact()
     law = law_or_mu
     if isinstance(law_or_mu, str):

@@ -13,6 +13,7 @@ from geometry.profiles import build_profile
 from solvers.curving import CreepLaw, Profiles, Track, Vehicle, flange_edge, solve
 
 from pipeline.validation.references.curving import linear_bogie
+from pipeline.curve.curving import build_problem
 
 RESIDUAL = 1e-8   # "Done when" (4): force and moment residuals / wheel load
 
@@ -23,7 +24,6 @@ def independent_conicity(prof, c, r0, l_w, y):
     o = rigid_contact(prof.wheel, prof.rail, c + y)
     i = rigid_contact(prof.wheel, prof.rail, c - y)
     return (o.z_wheel - i.z_wheel) / (2 * y), l_w + 0.5 * (o.y_wheel + i.y_wheel)
-
 
 
 def cone_pair(lam: float = 0.005, crown: float = 0.3):
@@ -39,8 +39,6 @@ def cone_pair(lam: float = 0.005, crown: float = 0.3):
 def metro(radius=None, **vehicle):
     """(Vehicle, Track, Profiles, CreepLaw) of the shipped r150 curve, the radius and vehicle
     fields replaced as given."""
-    from pipeline.curve.curving import build_problem
-
     c, v, veh, trk, prof, law, names = build_problem("r150")
     if radius is not None:
         trk = dataclasses.replace(trk, radius=radius)

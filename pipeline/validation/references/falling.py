@@ -6,7 +6,7 @@ from __future__ import annotations
 
 def falling_law(mu_s: float, mu_k: float, s_ref: float):
     """Polach's law mu(s) = mu_s ((1 - A) exp(-s / s_ref) + A), A = mu_k / mu_s (the registry's)."""
-    from solvers.contact.friction_laws import get_friction_law
+    from solvers.contact.friction_laws import get_friction_law  # lazy: brings in numba, rocket_fft, scipy
 
     return get_friction_law("polach", mu0=mu_s, A=mu_k / mu_s, B=1.0 / s_ref)
 
@@ -15,9 +15,9 @@ def falling_contact(cm, law_params, v: float, preload: float):
     """The case's contact with the global curve of a falling law (mu_s, mu_k, s_ref): TANG with the
     local law on the pressure at the static approach (``solvers.contact.falling.tang_curve``: the
     peer's rf_curve and the law's tail), as the contact stage builds a law's curve."""
-    from solvers.contact.falling import tang_curve
-    from solvers.contact.norm import NormTable, table_pressure
-    from solvers.timeloop.interaction import static_approach
+    from solvers.contact.falling import tang_curve  # lazy: brings in numba, rocket_fft, scipy
+    from solvers.contact.norm import NormTable, table_pressure  # lazy: brings in numba, scipy
+    from solvers.timeloop.interaction import static_approach  # lazy: brings in numba, rocket_fft, scipy
 
     table = NormTable(cm.xi3_nodes, cm.F3_nodes, cm.q_nodes, cm.pressure_nodes, cm.pressure_nodes > 0)
     p3 = table_pressure(table, static_approach(cm, preload))

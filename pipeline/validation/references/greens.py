@@ -21,12 +21,15 @@ from __future__ import annotations
 
 import csv
 from pathlib import Path
+import json
+import tomllib
 
 import numpy as np
 
 from solvers.constants import F_MAX_HZ, THESIS_CONTACT_POINTS_FIELD
 
 from pipeline.store.paths import ROOT
+from geometry.wheel import tread_radius
 
 DATA = Path(__file__).resolve().parent / "data"
 ARTIFACT = ROOT / "build" / "wheels" / "c20" / "modes.npz"
@@ -59,7 +62,7 @@ def sdof_impulse(t, m, f0, zeta):
 def bandlimit_error(k, dt, m):
     """Leading-order error of Kropp's g[k] for a mass-line tail -1/(m W^2) cut at the
     Nyquist frequency: 2 dt^2/(pi^2 m) [cos(pi k) - pi k (pi/2 - Si(pi k))], halved at k = 0."""
-    from scipy.special import sici
+    from scipy.special import sici  # lazy: brings in scipy
 
     k = np.asarray(k, float)
     a = np.pi * k
@@ -174,7 +177,7 @@ def _synthetic_c20():
 def wheel_case(y=-0.032):
     """Modal data of the C20 at the contact point y^W: dict with f_hz, n, m, cls,
     kind, modal_mass, zeta_suspension, zeta ([4.11]), phi (M, 2) and source."""
-    from solvers.wheel.receptance import contact_point, contact_shape, modal_damping
+    from solvers.wheel.receptance import contact_point, contact_shape, modal_damping  # lazy: brings in scipy
 
     if ARTIFACT.exists():
         d = np.load(ARTIFACT)
@@ -193,11 +196,6 @@ def wheel_case(y=-0.032):
 def tread_radius_function():
     """r(y^W) of the C20 running surface (geometry.wheel.tread_radius) with the wheel
     parameters the artifact was built from (its provenance), else the wheel file."""
-    import json
-    import tomllib
-
-    from geometry.wheel import tread_radius
-
     p = None
     if ARTIFACT.exists():
         with np.load(ARTIFACT) as d:
@@ -213,7 +211,7 @@ def tread_radius_function():
 def kernel_spectrum(g, n_t):
     """DFT of a kernel g[0..L-1] zero-padded to n_t, on f_k = k/(n_t dt), k = 0..n_t/2:
     sum_k g[k] exp(-2 pi i f k dt)."""
-    import scipy.fft as sfft
+    import scipy.fft as sfft  # lazy: brings in scipy
 
     return sfft.rfft(np.asarray(g), n=n_t, axis=0)
 

@@ -11,7 +11,7 @@ import numpy as np
 
 def pencil_poles(x, dt: float, f: float, half_band: float = 60.0, t0: float = 0.02, tol: float = 1e-7):
     """The poles s (1/s + 2 pi i Hz, absolute frequency) of x[n] - x[0] near f, from t0 on."""
-    from scipy.signal import butter, sosfiltfilt
+    from scipy.signal import butter, sosfiltfilt  # lazy: brings in scipy
 
     n0 = int(round(t0 / dt))
     y = np.asarray(x[n0:], float) - x[0]
@@ -47,7 +47,7 @@ def measured_growth(x: np.ndarray, dt: float, f: float, t0: float = 0.02, window
     """Growth rate (1/s) of the component of x at frequency f: complex demodulation in
     Blackman-Harris windows (sidelobes -92 dB: the faster low-frequency root does not leak into
     the wheel modes' bins), least squares on log|A|."""
-    from scipy.signal import windows
+    from scipy.signal import windows  # lazy: brings in scipy
 
     n0, nw = int(round(t0 / dt)), int(round(window / dt))
     nb = (len(x) - n0) // nw

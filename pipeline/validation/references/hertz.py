@@ -115,7 +115,7 @@ def ellipsoidal_traction_compliance(a: float, b: float, E: float = 210e9, nu: fl
         rho(phi)^2 = cos^2 phi / a^2 + sin^2 phi / b^2
     (Int_0^(1/rho) sqrt(1 - r^2 rho^2) dr = pi / (4 rho)).  For a circle this is
     Mindlin's no-slip compliance (2 - nu) / (4 G a) (Johnson eq. 7.35, both bodies)."""
-    from scipy.integrate import quad
+    from scipy.integrate import quad  # lazy: brings in scipy
 
     G = E / (2.0 * (1.0 + nu))
     rho = lambda f: np.sqrt(np.cos(f) ** 2 / a**2 + np.sin(f) ** 2 / b**2)

@@ -25,6 +25,11 @@ from solvers.constants import F_MAX_HZ
 from solvers.timeloop.interaction import ContactModel, WheelModes, contact_model
 
 from pipeline.store.paths import ROOT
+from solvers.contact.friction import monotone_slopes
+from pipeline.caches.friction_curves import with_curves
+from pipeline.validation.references.greens import wheel_case, beam_transfer
+from solvers.greens.kernels import moving_green
+from solvers.contact.norm import table_force
 
 CONTACT = ROOT / "build" / "cases" / "default" / "contact.npz"
 RAIL = ROOT / "build" / "rails" / "bv50" / "rail.npz"
@@ -39,8 +44,6 @@ def hertz_contact(mu: float = MU, F_L: float = PRELOAD) -> ContactModel:
     """Analytic stand-in for the default contact: Hertz F3 = K a^1.5 with the static approach of
     the C20/BV50 case (97 um at 65 kN), compliance 1.2e-9 m/N, and mu_RF(s) = mu (1 - (1 - s/s_sat)^3)
     up to s_sat = 0.1 m/s (Hermite nodes)."""
-    from solvers.contact.friction import monotone_slopes
-
     a0 = 9.7e-5
     K = F_L / a0 ** 1.5
     xs = np.linspace(0.0, 2 * a0, 41)
@@ -57,8 +60,6 @@ def default_contact(mu: float = MU) -> ContactModel:
     the case's friction-curve cache (``pipeline.caches.friction_curves.with_curves``: built on the artifact's
     static contact once, then read); ``hertz_contact`` without the artifact."""
     if CONTACT.exists():
-        from pipeline.caches.friction_curves import with_curves
-
         with np.load(CONTACT) as d:
             return contact_model(with_curves("default", d, [mu]), mu)
     return hertz_contact(mu)
@@ -66,8 +67,6 @@ def default_contact(mu: float = MU) -> ContactModel:
 
 def c20_modes(select=None, zeta_override: dict | None = None) -> tuple[WheelModes, dict]:
     """C20 modal data at y^W = -32 mm; ``select``: indices to keep (None: all)."""
-    from pipeline.validation.references.greens import wheel_case
-
     w = wheel_case(-0.032)
     idx = np.arange(len(w["f_hz"])) if select is None else np.asarray(select)
     zeta = np.array(w["zeta"], float)
@@ -79,9 +78,6 @@ def c20_modes(select=None, zeta_override: dict | None = None) -> tuple[WheelMode
 def beam_kernel(dt: float = DT, v: float = V, n_lags: int | None = None, n_t: int | None = None) -> np.ndarray:
     """Moving Green's function of the analytic beams (references.greens) for the step dt: 36 ms of lags,
     N_t dt = 147 ms."""
-    from solvers.greens.kernels import moving_green
-    from pipeline.validation.references.greens import beam_transfer
-
     n_lags = n_lags or int(round(1000 * DT / dt))
     n_t = n_t or int(round(4096 * DT / dt))
     return moving_green(beam_transfer(), v, dt, n_lags, n_t)
@@ -117,8 +113,6 @@ def bv50_kernel(dt: float = DT, v: float = V, y_rail: float = 0.012, n_lags: int
                 n_t: int | None = None) -> np.ndarray:
     """Moving Green's function of the built BV50 rail: N_t dt = 0.295 s (df = 3.4 Hz, as the greens
     stage at 36 us) and 2048 lags (74 ms, 1 m of travel) at dt = 36 us, scaled with dt."""
-    from solvers.greens.kernels import moving_green
-
     n_lags = n_lags or int(round(2048 * DT / dt))
     n_t = n_t or int(round(8192 * DT / dt))
     return moving_green(bv50_transfer(y_rail), v, dt, n_lags, n_t)
@@ -128,8 +122,6 @@ def bv50_kernel(dt: float = DT, v: float = V, y_rail: float = 0.012, n_lags: int
 
 def contact_stiffness(contact: ContactModel, approach: float) -> float:
     """dF3/d(approach) of the NORM table at the given approach (central difference)."""
-    from solvers.contact.norm import table_force
-
     h = 1e-6 * approach
     return (table_force(approach + h, contact.xi3_nodes, contact.q_nodes)
             - table_force(approach - h, contact.xi3_nodes, contact.q_nodes)) / (2 * h)
@@ -201,8 +193,6 @@ def reduced_squealer(dt: float = DT) -> tuple[WheelModes, np.ndarray]:
     friction coupling destabilises both for F2 > 0: kappa = Phi_3 (Phi_3 + mu Phi_2) < 0),
     zeta = 1e-4 [4.11], on the analytic beam rail (kernel rebuilt for dt).  The contact tables
     are the default case's (a test model, not a case)."""
-    from pipeline.validation.references.greens import wheel_case
-
     w = wheel_case(-0.005)
     n, m, cls = w["n"], w["m"], w["cls"]
     sel = [int(np.flatnonzero((n == k) & (m == 0) & (cls == "a"))[0]) for k in (2, 3)]

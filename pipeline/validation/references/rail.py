@@ -15,9 +15,12 @@ from pathlib import Path
 import numpy as np
 from scipy.sparse.linalg import splu
 
-from solvers.rail import response as rr
+from solvers.rail import response as rr, waveguide as wg
 
 from pipeline.store.paths import ROOT
+from pipeline.stages.rail_io import load_rail, build_rail_model
+from geometry.rail_mesh import mesh_rail
+from geometry.mesher import read_msh
 
 RAILS = ROOT / "geometry" / "rails"
 _TMP = Path(tempfile.mkdtemp(prefix="rail_models_"))
@@ -25,8 +28,6 @@ atexit.register(shutil.rmtree, _TMP, ignore_errors=True)
 
 
 def rail_params(name: str = "bv50", mesh_scale: float = 1.0) -> dict:
-    from pipeline.stages.rail_io import load_rail
-
     p = load_rail(RAILS / f"{name}.toml")
     if mesh_scale != 1.0:
         p = copy.deepcopy(p)
@@ -37,8 +38,6 @@ def rail_params(name: str = "bv50", mesh_scale: float = 1.0) -> dict:
 
 @functools.lru_cache(maxsize=None)
 def mesh_path(name: str = "bv50", mesh_scale: float = 1.0) -> str:
-    from geometry.rail_mesh import mesh_rail
-
     path = _TMP / f"{name}_{mesh_scale:g}.msh"
     mesh_rail(rail_params(name, mesh_scale), str(path))
     return str(path)
@@ -47,9 +46,6 @@ def mesh_path(name: str = "bv50", mesh_scale: float = 1.0) -> str:
 @functools.lru_cache(maxsize=None)
 def assembled(name: str = "bv50", mesh_scale: float = 1.0):
     """(params, mesh, cell_tags, facet_tags, Assembled, materials, torsion props)."""
-    from geometry.mesher import read_msh
-    from solvers.rail import waveguide as wg
-
     p = rail_params(name, mesh_scale)
     mesh, ct, ft = read_msh(mesh_path(name, mesh_scale))
     asm = wg.assemble(mesh, ct, ft)
@@ -60,8 +56,6 @@ def assembled(name: str = "bv50", mesh_scale: float = 1.0):
 
 @functools.lru_cache(maxsize=None)
 def rail_model(name: str = "bv50", mesh_scale: float = 1.0):
-    from pipeline.stages.rail_io import build_rail_model
-
     return build_rail_model(rail_params(name, mesh_scale), mesh_path(name, mesh_scale))
 
 

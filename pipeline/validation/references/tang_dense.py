@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.linalg as sla
 
-from solvers.contact.influence import tangential_kernels
+from solvers.contact.influence import tangential_kernels, Convolver
 
 
 def dense_operator(contact, dx, dy, E, nu, steady):
@@ -97,7 +97,6 @@ def tang_dense(p3, dx, dy, v, mu, gamma_x=0.0, gamma_y=0.0, spin=0.0, material=(
     r = np.column_stack([(gamma_x - spin * y) * v, (gamma_y + spin * x) * v]) * dt
     if not steady and prev is not None:
         Ash = tangential_kernels(nx, ny, dx, dy, E, nu, shift_x=1)
-        from solvers.contact.influence import Convolver
 
         conv = Convolver(*Ash)
         h1, h2 = conv.transform(prev[0]), conv.transform(prev[1])

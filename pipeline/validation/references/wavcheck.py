@@ -41,7 +41,7 @@ def filter_bank_levels(p_whole, fs, start_s: float, stop_s: float, f_range=(10.0
     stop_s after filtering the whole file (so the filters have settled) with pyfar's
     order-14 Butterworth 1/3-octave bank (energy preserving, IEC 61260-1 class 1 design);
     bands 10 Hz - 16 kHz (the 20 kHz band's upper edge is above the Nyquist frequency)."""
-    import pyfar as pf
+    import pyfar as pf  # lazy: brings in pyfar
 
     y = pf.dsp.filter.fractional_octave_bands(pf.Signal(np.asarray(p_whole, float), fs), 3,
                                               frequency_range=f_range)
@@ -57,8 +57,8 @@ def filter_bank_from_lines(f, p2, fs, f_range=(10.0, 17000.0)):
     mean square ``p2`` (Pa^2) at frequency ``f`` (Hz) weighted by every band filter's own |H_b(f)|^2
     (scipy.signal.sosfreqz of its second-order sections).  Exact for the tones of a stationary signal,
     so it carries the filters' skirts, which ideal band edges do not."""
-    import pyfar as pf
-    from scipy.signal import sosfreqz
+    import pyfar as pf  # lazy: brings in pyfar
+    from scipy.signal import sosfreqz  # lazy: brings in scipy
 
     sos = np.asarray(pf.dsp.filter.fractional_octave_bands(None, 3, sampling_rate=fs, frequency_range=f_range).coefficients)
     f = np.asarray(f, float)

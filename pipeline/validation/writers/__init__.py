@@ -17,10 +17,10 @@ __all__ = ["DOCS", "pyplot", "save_figure", "save_fragment"]
 
 def pyplot():
     """matplotlib.pyplot on the Agg backend (imported when a writer draws)."""
-    import matplotlib
+    import matplotlib  # lazy: brings in matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: brings in matplotlib
 
     return plt
 

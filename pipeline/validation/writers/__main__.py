@@ -18,6 +18,7 @@ import time
 from pipeline.store.paths import ROOT, build
 from pipeline.validation.writers import DOCS
 from pipeline.validation.writers.registry import WRITERS
+from pipeline.validation.docs import assemble_validation
 
 
 def _start(w, logs):
@@ -65,7 +66,6 @@ def run(names=(), jobs: int | None = None) -> int:
                 print(f"wrote {', '.join(w.fragments)} ({w.module}, {took:.0f} s)", flush=True)
     print(f"{len(failed)} writer(s) failed" if failed else "every writer wrote its fragments",
           f"in {time.perf_counter() - t0:.0f} s; logs in {logs}", flush=True)
-    from pipeline.validation.docs import assemble_validation
 
     assemble_validation()
     print("assembled docs/validation.md")

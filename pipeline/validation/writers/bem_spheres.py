@@ -21,7 +21,7 @@ LEVEL = 3            # bempp's regular sphere: 512 triangles, 258 vertices, edge
 
 def _devices() -> list[str]:
     """bempp-cl's backends here: numba always, OpenCL when a CPU driver (pocl) is installed."""
-    import bempp_cl.api as api
+    import bempp_cl.api as api  # lazy: brings in bempp_cl
 
     return ["numba"] + (["opencl"] if api.CPU_OPENCL_DRIVER_FOUND else [])
 
@@ -35,9 +35,9 @@ def sphere_rows() -> dict:
 def _sphere_rows(devices=None, ka_values=KA) -> dict:
     """bempp's regular sphere's vertex count and per backend and ka the row (device, ka, L_W pulsating BEM,
     exact, oscillating BEM, exact, wall s), levels in dB re 1e-12 W."""
-    import bempp_cl.api as api
+    import bempp_cl.api as api  # lazy: brings in bempp_cl
 
-    from solvers.radiation import bem
+    from solvers.radiation import bem  # lazy: brings in scipy
 
     g = api.shapes.regular_sphere(LEVEL)
     v = g.vertices.T

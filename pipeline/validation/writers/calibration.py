@@ -20,14 +20,20 @@ import numpy as np
 from pipeline.validation.make import ensure_case
 from pipeline.validation.references.greens import DATA
 from pipeline.validation.writers import save_fragment
+from pipeline.validation.calibrate_wheel import tread_ratio, TARGETS
+from geometry.wheel import tread_radius
+from pipeline.store import artifacts, paths
+from pipeline.validation.calibrate_suspension import CASE, MU_LOUD, MU_QUIET, lf_growth
+from pipeline.study.definition import grid_of, load_study
+from pipeline.stages.wheel import load_wheel, reference_rows
+from postprocess.modes.reference import match_modes, summary
+from solvers.constants import F_MAX_HZ, THESIS_CONTACT_POINTS_FIELD
 
 REF = DATA / "c20_modes.csv"
 
 
 def _ratio_line(modes, p, label, ys):
     """Phi_3/Phi_2 of mode ``label`` at the tread points ``ys`` and its zero by a line fit."""
-    from pipeline.validation.calibrate_wheel import tread_ratio
-
     r = np.array([tread_ratio(modes, p, y, label) for y in ys])
     slope, icpt = np.polyfit(ys, r, 1)
     return r, -icpt / slope
@@ -35,8 +41,7 @@ def _ratio_line(modes, p, label, ys):
 
 def _levels(modes, p, y, f):
     """Mean levels (dB re 1 m/N) of |G33| and |G23| over f at tread point y (the greens stage's point)."""
-    from geometry.wheel import tread_radius
-    from solvers.wheel.receptance import contact_point, contact_shape, modal_damping, wheel_receptance
+    from solvers.wheel.receptance import contact_point, contact_shape, modal_damping, wheel_receptance  # lazy: brings in scipy
 
     surface = np.unique(np.concatenate([modes["boundary_tread"], modes["boundary_flange"]]))
     where = contact_point(modes["points"], surface, y, p["axle"]["rolling_circle_z"],
@@ -52,15 +57,6 @@ def measure() -> dict:
     """The calibrations' targets and checks: the C20's frequencies against Table 4.1, the coupling zero points
     of (2,0,a) and (3,0,a), the receptance levels at the three contact points, the low-frequency growth at
     -5 mm (mu 0.40 and 0.45) and -10 mm (mu 0.45-0.60)."""
-    from pipeline.store import artifacts, paths
-    from pipeline.validation.calibrate_suspension import CASE, MU_LOUD, MU_QUIET, lf_growth
-    from pipeline.validation.calibrate_wheel import TARGETS, tread_ratio
-    from pipeline.study.definition import grid_of
-    from pipeline.study.definition import load_study
-    from pipeline.stages.wheel import load_wheel, reference_rows
-    from postprocess.modes.reference import match_modes, summary
-    from solvers.constants import F_MAX_HZ, THESIS_CONTACT_POINTS_FIELD
-
     for case in ("dy05", "dy10"):
         ensure_case(case)
     p, _ = load_wheel("c20")
@@ -94,8 +90,6 @@ def measure() -> dict:
 
 
 def write() -> str:
-    from pipeline.validation.calibrate_suspension import MU_LOUD, MU_QUIET
-
     m = measure()
     p, s, zero_rows, points, g23, g33, spread33 = (m[k] for k in ("p", "s", "zero_rows", "points", "g23", "g33",
                                                                   "spread33"))

@@ -11,14 +11,14 @@ from pipeline.validation.references.contact_peer import (CONTACT_CREEP, CONTACT_
                                                          GEOMETRIES, LAWS, SETS, TRANSIENT_LAW, creep_curves,
                                                          deviations, hertz_contact, patch_forces, transient_run)
 from pipeline.validation.writers import DOCS, pyplot, save_figure, save_fragment
+from solvers.contact.friction import rf_curve
+from solvers.contact.friction_laws import get_friction_law, preset
+from solvers.contact.norm import approach_for_load
+from pipeline.validation.references.contact import V as V_RF, hertz_case
 
 
 def write() -> str:
     plt = pyplot()
-    from solvers.contact.friction import rf_curve
-    from solvers.contact.friction_laws import get_friction_law, preset
-    from solvers.contact.norm import approach_for_load
-    from pipeline.validation.references.contact import V as V_RF, hertz_case
 
     contact = hertz_contact()
     res, rows, times = {}, [], []

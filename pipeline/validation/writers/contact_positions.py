@@ -6,6 +6,13 @@ What it states as checked is asserted by tests/contact/test_positions_validation
 import numpy as np
 
 from pipeline.validation.writers import DOCS, pyplot, save_figure, save_fragment
+from geometry.contact_point import rigid_contact, FlangeContact, TrackRail, wheel_shift
+from pipeline.study.map import map_mus
+from geometry.calibration import THESIS_POSITIONS, jump_offsets, BOUNDS, NAMES
+from pipeline.config.case_profiles import read_profile
+from pipeline.stages.rail import load_rail_params
+from pipeline.stages.wheel import load_wheel
+import re
 
 CASES = ("dy05", "dy10", "default")
 
@@ -14,8 +21,6 @@ def conicity(geo, c, u=3e-3):
     """Equivalent conicity Delta r / (2 u) of a symmetric wheelset of the
     case's profiles displaced by u (the left wheel's rolling circle at c + u,
     the right wheel's at c - u over their rails)."""
-    from geometry.contact_point import rigid_contact
-
     yl = rigid_contact(geo.wheel, geo.rail_track, c + u).y_wheel
     yr = rigid_contact(geo.wheel, geo.rail_track, c - u).y_wheel
     return float((geo.wheel(yl) - geo.wheel(yr)) / (2 * u))
@@ -24,9 +29,8 @@ def conicity(geo, c, u=3e-3):
 def positions() -> dict:
     """case -> the case dict, its contact geometry, the contact stage's arrays at the map's friction
     values (``build_contact``) and the static patch's metrics."""
-    from pipeline.stages.contact import build_contact, contact_setup
-    from pipeline.study.map import map_mus
-    from solvers.contact.surfaces import patch_metrics
+    from pipeline.stages.contact import build_contact, contact_setup  # lazy: brings in numba, rocket_fft, scipy
+    from solvers.contact.surfaces import patch_metrics  # lazy: brings in numba, rocket_fft, scipy
 
     res = {}
     for case in CASES:
@@ -38,9 +42,6 @@ def positions() -> dict:
 
 def write() -> str:
     plt = pyplot()
-    from geometry.calibration import THESIS_POSITIONS, jump_offsets
-    from geometry.contact_point import FlangeContact, TrackRail, rigid_contact, wheel_shift
-    from pipeline.config.case_profiles import read_profile
 
     res = positions()
     area = np.array([r["m"]["area"] for r in res.values()])
@@ -132,8 +133,6 @@ def write() -> str:
                     f"{a['rf_gamma_sat'][i03]:.4f} |")
     w = read_profile("c20_worn")[0]
     GAUGE = 1.435  # m, standard gauge (measured 14 mm below the crown, on the head's vertical side here)
-    from pipeline.stages.rail import load_rail_params
-    from pipeline.stages.wheel import load_wheel
 
     half_head = 0.5 * load_rail_params("bv50")[0]["head"]["width"]
     z_rc = load_wheel("c20")[0]["axle"]["rolling_circle_z"]
@@ -141,9 +140,7 @@ def write() -> str:
     c_geo = z_rc - rail_centre
     dyr = max(abs(r["a"]["y_rail"] - THESIS_POSITIONS[r["c"]["contact"]["dy_wr"]][1]) for r in res.values())
     dyw = max(abs(r["a"]["y_wheel"] - THESIS_POSITIONS[r["c"]["contact"]["dy_wr"]][0]) for r in res.values())
-    import re
 
-    from geometry.calibration import BOUNDS, NAMES
 
     par = {k: 1e-3 * float(v) for k, v in re.findall(r"(\w+) = ([-\d.]+) mm", w.meta["wear_parameters"])}
     at_bound = [f"{k} = {1e3 * par[k]:g} mm (range {1e3 * lo:g} .. {1e3 * hi:g})" for k, (lo, hi) in zip(NAMES, BOUNDS)

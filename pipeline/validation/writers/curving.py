@@ -14,6 +14,10 @@ from solvers.curving import solve
 from pipeline.validation.references.curving import pure_rolling_shift
 from pipeline.validation.references.curving_cases import RESIDUAL, independent_conicity, linear_case, metro
 from pipeline.validation.writers import DOCS, pyplot, save_figure, save_fragment
+from pipeline.curve.curving import build_problem, solve_curve
+from postprocess.plots.curving import bogie_in_curve, radius_sweep
+from solvers.curving.creep import kalker_coefficients
+from pipeline.validation.references.kalker import creep_coefficient
 
 RADII = (50.0, 75.0, 100.0, 150.0, 200.0, 300.0, 500.0, 750.0, 1000.0)
 
@@ -21,8 +25,6 @@ RADII = (50.0, 75.0, 100.0, 150.0, 200.0, 300.0, 500.0, 750.0, 1000.0)
 def _problem(curve, radius, a_unc=0.5):
     """The curve's problem at another radius, no cant, the speed that gives at most a_unc
     (m/s^2) of lateral acceleration (and at most the curve's speed)."""
-    from pipeline.curve.curving import build_problem
-
     c, v, veh, trk, prof, law, names = build_problem(curve)
     V = min(trk.speed, math.sqrt(a_unc * radius))
     return veh, dataclasses.replace(trk, radius=radius, cant=0.0, speed=V), prof, law
@@ -43,14 +45,10 @@ def sweep(curve):
 
 
 def write() -> str:
-    from scipy.optimize import brentq
+    from scipy.optimize import brentq  # lazy: brings in scipy
 
     pyplot()                                         # the Agg backend before the plots import pyplot
 
-    from pipeline.curve.curving import solve_curve
-    from postprocess.plots.curving import bogie_in_curve, radius_sweep
-    from solvers.curving.creep import kalker_coefficients
-    from pipeline.validation.references.kalker import creep_coefficient
 
     out = ["## Steady curving (issue 25)", "",
            "Written by `pipeline/validation/writers/curving.py` (`make validate`; the asserted checks are "

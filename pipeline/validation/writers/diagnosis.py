@@ -17,6 +17,7 @@ import numpy as np
 
 from pipeline.validation.make import ensure_case
 from pipeline.validation.writers import save_fragment
+from pipeline.stages.stability import case_linear_model
 
 KEYS = ["LF", "(0,0,a)", "(1,0,a)", "(2,0,a)", "(3,0,a)", "(4,0,a)", "(5,0,a)"]
 CASES = {"dy05": -5, "dy10": -10, "default": -15}
@@ -25,7 +26,7 @@ GAMMA = -0.014
 
 
 def _screen(lm, labels):
-    from solvers.stability.screen import screen
+    from solvers.stability.screen import screen  # lazy: brings in numba
 
     roots = screen(lm)
     out = {}
@@ -47,8 +48,8 @@ def _row(res, keys):
 
 def _lf_structure(lm):
     """|xi| of rail and wheel (directions 2, 3) per unit dF3 at the fastest LF root (full slip)."""
-    from solvers.greens.kernels import modal_filter
-    from solvers.stability.screen import _wheel_z, rail_receptance_z, track_roots
+    from solvers.greens.kernels import modal_filter  # lazy: brings in numba, scipy
+    from solvers.stability.screen import _wheel_z, rail_receptance_z, track_roots  # lazy: brings in numba
 
     lf = [r for r in track_roots(lm) if r.sigma > 0]
     if not lf:
@@ -62,8 +63,6 @@ def _lf_structure(lm):
 
 def fastest_roots() -> dict:
     """(dy_WR mm, mu) -> the candidate with the fastest-growing root (the screen, the case's linear model)."""
-    from pipeline.stages.stability import case_linear_model
-
     out = {}
     for case, dy in CASES.items():
         ensure_case(case)
@@ -75,8 +74,6 @@ def fastest_roots() -> dict:
 
 
 def write() -> str:
-    from pipeline.stages.stability import case_linear_model
-
     for case in CASES:
         ensure_case(case)
     keys = KEYS

@@ -22,6 +22,12 @@ from pipeline.validation.cached import cached
 from pipeline.validation.make import ensure_case
 from pipeline.validation.references.falling import falling_contact, falling_law
 from pipeline.validation.writers import save_fragment
+from pipeline.store import paths
+from pipeline.stages.radiate import load_radiation_model, sound_power_of_forces
+from pipeline.stages.stability import case_linear_model
+from solvers.constants import SQUEAL_LEVEL_DB
+from solvers.study import nearest_mode
+import time
 
 CASES = ("dy05", "dy10", "default")
 LAWS = {"falling (mild: 0.35 -> 0.30, s_ref 1 m/s)": (0.35, 0.30, 1.0),
@@ -42,8 +48,6 @@ def variants(contact_angle: float):
 
 
 def _inputs(case: str) -> list:
-    from pipeline.store import paths
-
     return [paths.case_dir(case) / "contact.npz", paths.case_dir(case) / "greens.npz",
             paths.wheel_dir("c20") / "modes.npz"]
 
@@ -58,13 +62,8 @@ def case_rows(case: str) -> list[dict]:
 
 
 def _case_rows(case: str):
-    from pipeline.store import paths
-    from pipeline.stages.radiate import load_radiation_model, sound_power_of_forces
-    from pipeline.stages.stability import case_linear_model
-    from solvers.constants import SQUEAL_LEVEL_DB
-    from solvers.timeloop.interaction import WheelModes, contact_model, simulate
-    from solvers.stability.screen import linearise, screen
-    from solvers.study import nearest_mode
+    from solvers.timeloop.interaction import WheelModes, contact_model, simulate  # lazy: brings in numba, rocket_fft, scipy
+    from solvers.stability.screen import linearise, screen  # lazy: brings in numba
 
     c, lm, labels, f_open = case_linear_model(case)
     con = np.load(paths.case_dir(case) / "contact.npz")
@@ -153,11 +152,7 @@ def kalker_runs() -> dict:
 
 
 def _kalker_runs() -> dict:
-    import time
-
-    from pipeline.store import paths
-    from pipeline.stages.stability import case_linear_model
-    from solvers.timeloop.interaction import WheelModes, contact_model, simulate
+    from solvers.timeloop.interaction import WheelModes, contact_model, simulate  # lazy: brings in numba, rocket_fft, scipy
 
     case = "default"
     c, lm, labels, f_open = case_linear_model(case)

@@ -26,6 +26,9 @@ import numpy as np
 from pipeline.store.paths import ROOT
 from pipeline.validation.make import make_targets
 from pipeline.validation.writers import DOCS, save_figure, save_fragment
+from solvers.greens.grid import RAIL_F_TAPER, RAIL_LAGS, RAIL_NT, rail_taper
+from pipeline.caches.rail_kernel import table_transfer, wave_table_threads
+from pipeline.stages.rail import load_rail_params
 
 BUILD = ROOT / "build"
 NEEDS = [BUILD / "rails" / "bv50" / "section.msh", BUILD / "cases" / "default" / "greens.npz",
@@ -33,12 +36,9 @@ NEEDS = [BUILD / "rails" / "bv50" / "section.msh", BUILD / "cases" / "default" /
 
 
 def kernel_section() -> tuple[str, np.ndarray]:
-    from solvers.greens.grid import RAIL_F_TAPER, RAIL_LAGS, RAIL_NT, rail_taper
-    from pipeline.caches.rail_kernel import table_transfer, wave_table_threads
-    from pipeline.stages.rail import load_rail_params
-    from solvers.greens.kernels import frequency_grid, moving_green
-    from solvers.rail.moving_kernel import moving_green_waves
-    from pipeline.stages.rail_io import build_rail_model
+    from solvers.greens.kernels import frequency_grid, moving_green  # lazy: brings in numba, scipy
+    from solvers.rail.moving_kernel import moving_green_waves  # lazy: brings in numba
+    from pipeline.stages.rail_io import build_rail_model  # lazy: brings in scipy
 
     dt, v, y = 36e-6, 50 / 3.6, 0.012
     pr, _ = load_rail_params("bv50")
@@ -85,8 +85,8 @@ same wave table.
 
 
 def convolution_section(g: np.ndarray) -> str:
-    from solvers.greens.kernels import convolve_direct
-    from solvers.timeloop.partitioned import partitioned_convolver
+    from solvers.greens.kernels import convolve_direct  # lazy: brings in numba, scipy
+    from solvers.timeloop.partitioned import partitioned_convolver  # lazy: brings in numba, rocket_fft
 
     F = np.random.default_rng(5).standard_normal((40000, 2)) * [2e3, 6e3] + [0.0, 65e3]
     ref = convolve_direct(g, F)
@@ -108,7 +108,7 @@ head B lags direct, the rest in partitions of B lags by overlap-save FFTs (`solv
 
 
 def case_section() -> str:
-    from solvers.timeloop.interaction import WheelModes, contact_model, simulate
+    from solvers.timeloop.interaction import WheelModes, contact_model, simulate  # lazy: brings in numba, rocket_fft, scipy
 
     with np.load(NEEDS[1]) as d:
         wheel = WheelModes(d["wheel_f"], d["wheel_mass"], d["wheel_zeta"], d["wheel_phi"])
@@ -146,10 +146,10 @@ dt-convergence error of the interaction (0.76 dB in L_F2, docs/validation/60_int
 
 
 def plot(g_old, g_new) -> None:
-    import matplotlib
+    import matplotlib  # lazy: brings in matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: brings in matplotlib
 
     t = np.arange(len(g_old)) * 36e-3
     fig, ax = plt.subplots(figsize=(8, 3.6))

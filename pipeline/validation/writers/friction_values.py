@@ -7,19 +7,19 @@ the limits it states are asserted by tests/contact/test_friction_values_validati
 import numpy as np
 
 from pipeline.validation.writers import DOCS, pyplot, save_figure, save_fragment
+from pipeline.caches.friction_curves import Friction, compute_curve
+from pipeline.validation.references.kalker import creep_coefficient
 
 MUS = (0.30, 0.33, 0.35)
 
 
 def _curves(p3, dx, dy, v, E, nu):
-    from pipeline.caches.friction_curves import Friction, compute_curve
-
     return {mu: compute_curve(p3, dx, dy, v, Friction.coulomb(mu), E, nu) for mu in MUS}
 
 
 def _measures(curves, F3, v, kalker_k):
     """Ordering, self-similarity and zero-slip slope of the curves (dict mu -> curve)."""
-    from solvers.contact.friction import mu_rf
+    from solvers.contact.friction import mu_rf  # lazy: brings in numba, rocket_fft, scipy
 
     s = np.linspace(0, curves[0.33]["s"][-1], 4001)
     m = {mu: np.array([mu_rf(x, c["s"], c["mu_rf"], c["slope"]) for x in s]) for mu, c in curves.items()}
@@ -39,13 +39,12 @@ def _measures(curves, F3, v, kalker_k):
 def measures() -> dict:
     """contact name -> (the curves' measures at mu = 0.30, 0.33, 0.35, (a, b)) on the Hertzian contact of
     SPEC 6 and on the default case's worn-profile contact."""
-    from solvers.contact.static import static_contact
+    from solvers.contact.static import static_contact  # lazy: brings in numba, rocket_fft, scipy
 
-    from pipeline.stages.contact import contact_setup
-    from solvers.contact.surfaces import patch_metrics
-    from pipeline.validation.references.contact import DX, E, NU, V, hertz_case
-    from pipeline.validation.references.kalker import creep_coefficient
-    from solvers.contact.norm import approach_for_load
+    from pipeline.stages.contact import contact_setup  # lazy: brings in numba, rocket_fft, scipy
+    from solvers.contact.surfaces import patch_metrics  # lazy: brings in numba, rocket_fft, scipy
+    from pipeline.validation.references.contact import DX, E, NU, V, hertz_case  # lazy: brings in scipy
+    from solvers.contact.norm import approach_for_load  # lazy: brings in numba, scipy
 
     G = E / (2 * (1 + NU))
     res = {}

@@ -13,6 +13,7 @@ from pipeline.validation.references.greens import (DT, LATERAL, V, VERTICAL, bea
                                                    pointwise_error)
 from pipeline.validation.writers import DOCS, pyplot, save_figure
 from pipeline.validation.writers.greens_kernels import F_BAND
+from solvers.greens.grid import RAIL_F_MAX, RAIL_F_TAPER, rail_taper
 
 GREENS = ROOT / "build" / "cases" / "default" / "greens.npz"
 
@@ -110,8 +111,6 @@ and it is G_mov, not the fixed-point receptance, that is reproduced.
 def rail_section() -> str:
     """The BV50 rail kernel of the default case (build/cases/default/greens.npz): causality of the
     receptance, pointwise spectrum error, the hard cut at 6.5 kHz against the taper."""
-    from solvers.greens.grid import RAIL_F_MAX, RAIL_F_TAPER, rail_taper
-
     if not GREENS.exists():
         return "### The BV50 rail kernel\n\n(build/cases/default/greens.npz missing: run `make greens`.)\n"
     with np.load(GREENS) as d:

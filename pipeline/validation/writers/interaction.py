@@ -22,12 +22,11 @@ from pipeline.validation.make import make_targets
 from pipeline.validation.references.interaction import DT, GAMMA_Y, PRELOAD, V, default_contact, reduced_squealer
 from pipeline.validation.writers import DOCS, pyplot, save_figure, save_fragment
 from pipeline.validation.writers.interaction_cases import MU, default_section, squeal_section
+from solvers.contact.compliance import table_compliance
+from solvers.contact.friction import mu_rf
 
 
 def ramp_section() -> str:
-    from solvers.contact.compliance import table_compliance
-    from solvers.contact.friction import mu_rf
-
     c = default_contact(MU)
     out = {}
     for T in (2.0, 8.0):

@@ -16,6 +16,13 @@ from pipeline.validation.references.interaction import (DT, GAMMA_Y, PRELOAD, V,
                                                         decay_rates, default_contact, rail_point_receptance,
                                                         reduced_squealer, single_mode_growth)
 from pipeline.validation.writers import DOCS, pyplot, save_figure
+from solvers.contact.static import DY, static_contact
+from pipeline.config.case_profiles import case_contact, contact_geometry
+from solvers.contact.compliance import compliance_table
+from solvers.contact.friction import rf_curve
+from solvers.contact.norm import norm_table
+from pipeline.validation.references.greens import wheel_case
+from solvers.spectra import amplitude_spectrum, dominant_frequency
 
 MU = 0.35
 # dy_WR (mm) -> (y^W, y^R), SPEC 2: thesis [4.1] field-positive (its printed y^W negated, solvers.constants)
@@ -25,12 +32,6 @@ POSITIONS = {dy: thesis_contact_point(1e-3 * dy) for dy in (-15, -10)}
 def build_contact(dy_mm: int, dt: float, mu: float = MU):
     """The contact of a nominal position at the grid dx = v dt: the contact stage's computation
     (pipeline/stages.contact.build_contact) for one friction coefficient."""
-    from solvers.contact.static import DY, static_contact
-    from pipeline.config.case_profiles import case_contact, contact_geometry
-    from solvers.contact.compliance import compliance_table
-    from solvers.contact.friction import rf_curve
-    from solvers.contact.norm import norm_table
-
     c, pw, pr, _ = case_contact("default")
     c["contact"]["dy_wr"] = dy_mm * 1e-3
     geo = contact_geometry("default", c, pw, pr)  # the contact point of the profiles, as the contact stage's
@@ -48,8 +49,6 @@ def build_contact(dy_mm: int, dt: float, mu: float = MU):
 
 
 def wheel_at(y_w: float) -> tuple[WheelModes, dict]:
-    from pipeline.validation.references.greens import wheel_case
-
     w = wheel_case(y_w)
     return WheelModes(w["f_hz"], w["modal_mass"], w["zeta"], w["phi"]), w
 
@@ -156,7 +155,6 @@ def default_section() -> str:
         extra.append(f"| {label} | {r.stop_reason} at {r.duration:.2f} s | {m['L_F2']:.1f} | {m['f_dominant']:.0f} | "
                      f"{m['F2_pp'] / 1e3:.1f} | {100 * m['contact_loss_share']:.0f} % |")
     plt = pyplot()
-    from solvers.spectra import amplitude_spectrum
 
     fig, ax = plt.subplots(1, 3, figsize=(14, 3.8))
     for dt, ls in ((DT, "-"), (DT / 2, "--"), (DT / 4, ":")):
@@ -281,7 +279,6 @@ def squeal_section() -> str:
         red_rows.append(f"| {1e6 * dt:.0f} | {r.stop_reason} at {r.duration:.2f} s | {m['L_F2']:.2f} | "
                         f"{m['f_dominant']:.2f} | {m['F2_pp'] / 1e3:.2f} | {wall:.2f} s |")
     plt = pyplot()
-    from solvers.spectra import amplitude_spectrum
 
     fig, ax = plt.subplots(2, 2, figsize=(11, 6.5))
     for j, (title, data, span) in enumerate((("C20 + BV50, dy_WR = -10 mm", {dt: res[dt][0] for dt in res}, 0.05),
@@ -350,8 +347,6 @@ dL_F2 = **{abs(qma['L_F2'] - qmb['L_F2']):.2f} dB**, df/f = **{dfr:.3f} %**
 def _fundamental(F2, dt):
     """Lowest strong spectral peak: the dominant peak below 0.7 x the dominant frequency if it is at
     least 30 % of it, else the dominant one."""
-    from solvers.spectra import amplitude_spectrum, dominant_frequency
-
     f, X = amplitude_spectrum(F2, dt)
     fd, ad = dominant_frequency(f, X, f_min=20.0)
     if fd > 40:

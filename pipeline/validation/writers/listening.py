@@ -12,15 +12,18 @@ from __future__ import annotations
 
 import tempfile
 from pathlib import Path
+import json
 
 import numpy as np
 
-from postprocess.listening import listener as L
+from postprocess.listening import listener as L, audio as A
 
 from pipeline.validation.make import make_targets
-from pipeline.validation.references import listening as TL
-from pipeline.validation.references import wavcheck as WC
+from pipeline.validation.references import listening as TL, wavcheck as WC
 from pipeline.validation.writers import DOCS, save_figure, save_fragment
+from pipeline.store.artifacts import ArtifactError
+from pipeline.config.loader import ConfigError
+from pipeline.stages.listen import compute_listening, listener_inputs
 
 
 def standards_section() -> list[str]:
@@ -102,10 +105,6 @@ def propagation_section() -> list[str]:
 
 
 def default_section() -> tuple[list[str], dict | None]:
-    from pipeline.store.artifacts import ArtifactError
-    from pipeline.config.loader import ConfigError
-    from pipeline.stages.listen import compute_listening
-
     head = ["### The default case at the ISO 3095 position (7.5 m, 1.2 m)", ""]
     make_targets("radiate", CASE="default")
     try:
@@ -113,8 +112,6 @@ def default_section() -> tuple[list[str], dict | None]:
     except (ArtifactError, ConfigError, FileNotFoundError) as e:
         return head + [f"Not available from the current artifacts ({e}); `make radiate` and rerun.", ""], None
     with tempfile.TemporaryDirectory() as tmp:
-        import json
-
         (Path(tmp) / "listen.wav").write_bytes(wav)
         (Path(tmp) / "listen.json").write_text(json.dumps(cal))
         fs, p, lc, cal = WC.read_calibrated(Path(tmp) / "listen.wav", Path(tmp) / "listen.json")
@@ -124,7 +121,6 @@ def default_section() -> tuple[list[str], dict | None]:
     loud = a["band_L_p"][:n] > float(a["L_p"]) - 70
     with np.errstate(divide="ignore"):
         bsum = 10 * np.log10(np.sum(10 ** (a["band_L_p"] / 10)))
-    from pipeline.stages.listen import listener_inputs
 
     pw = listener_inputs("default")[1]
     m = {"z_rc": pw["axle"]["rolling_circle_z"], "radius": pw["tyre"]["rolling_radius"], "a": a, "p": p, "fs": fs, "nom": nom, "Lb": Lb, "f_wav": f_wav, "L_wav": WC.level(lc), "bsum": bsum,
@@ -185,12 +181,11 @@ def default_section() -> tuple[list[str], dict | None]:
 
 
 def plot(m: dict) -> None:
-    import matplotlib
+    import matplotlib  # lazy: brings in matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: brings in matplotlib
 
-    from postprocess.listening import audio as A
 
     a = m["a"]
     fig, axs = plt.subplots(3, 1, figsize=(9, 11))

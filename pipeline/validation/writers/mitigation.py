@@ -13,14 +13,14 @@ import numpy as np
 
 from pipeline.validation.make import ensure_case
 from pipeline.validation.writers import save_fragment
+from pipeline.curve.what_ifs import CaseModels, damping_what_if, friction_what_if
+from solvers.stability.mitigation import coulomb_curve_at, first_squeal, growing_wheel_root
 
 
 def measure() -> dict:
-    from pipeline.curve.what_ifs import CaseModels, damping_what_if, friction_what_if
-    from solvers.contact.friction import rf_curve
-    from solvers.stability.mitigation import coulomb_curve_at, first_squeal, growing_wheel_root
+    from solvers.contact.friction import rf_curve  # lazy: brings in numba, rocket_fft, scipy
 
-    from pipeline.validation.references.contact import hertz_pressure
+    from pipeline.validation.references.contact import hertz_pressure  # lazy: brings in scipy
 
     ensure_case("default")
     p3, d = hertz_pressure()

@@ -12,21 +12,23 @@ from __future__ import annotations
 
 import numpy as np
 
-from solvers.radiation import surfaces as SF
-from solvers.radiation import thompson_jones as R
+from solvers.radiation import surfaces as SF, thompson_jones as R
 from solvers.spectra import amplitude_spectrum
 from solvers.wheel.receptance import modal_damping
 
 from pipeline.validation.make import make_targets
 from pipeline.validation.references import node_average as NA
-from pipeline.validation.references.radiation import ART
+from pipeline.validation.references.radiation import (
+    ART, AXIAL_HAND, GAMMA, RADIAL_HAND, RADII, flat_disc_segments, setup, DT, N, modal_velocity_reference,
+    one_mode_model, load_c20
+)
 from pipeline.validation.writers import DOCS, pyplot, save_figure, save_fragment
 from pipeline.validation.writers.radiation_cases import c20_section, default_case_section, spectra_section
+from pipeline.stages.radiate import sound_power_of_forces
+from solvers.radiation.force_power import harmonic_power
 
 
 def efficiency_section() -> list[str]:
-    from pipeline.validation.references.radiation import AXIAL_HAND, GAMMA, RADIAL_HAND
-
     dev = [abs(R.sigma_axial(n, f, 0.39) / v - 1) for n, f, _, _, _, v in AXIAL_HAND]
     dev += [abs(R.sigma_radial(n, f, 0.39, GAMMA) / v - 1) for n, f, _, v in RADIAL_HAND]
     dev += [abs(R.sigma_torsion(1000.0, 0.1233) / 0.092279933 - 1), abs(R.sigma_torsion(3000.0, 0.1233) / 0.89171113 - 1)]
@@ -91,8 +93,6 @@ def efficiency_plot(gamma: float, w: float, r: float = 0.39):
 
 
 def surfaces_section() -> list[str]:
-    from pipeline.validation.references.radiation import RADII, flat_disc_segments
-
     s = SF.radiation_surfaces(RADII, flat_disc_segments())
     pi = np.pi
     hand = np.array([2 * pi * (0.1575**2 - 0.10**2), 2 * pi * (0.215**2 - 0.1575**2), 2 * pi * (0.2725**2 - 0.215**2),
@@ -115,8 +115,6 @@ def surfaces_section() -> list[str]:
 
 
 def sdof_section() -> list[str]:
-    from pipeline.validation.references.radiation import setup
-
     out = []
     for n, F2, F3 in ((2, 1.0, 0.0), (0, 0.0, 2.0), (5, 1.0, 1.0)):
         modes, s, nodes, _ = setup(n=n, zeta=None)
@@ -151,11 +149,6 @@ def sdof_section() -> list[str]:
 def forces_section() -> list[str]:
     """One mode at resonance driven by a sampled force history, through the stage's
     sound_power_of_forces, against the time-domain modal velocity (tests/radiation/test_forces.py)."""
-    from pipeline.stages.radiate import sound_power_of_forces
-    from solvers.radiation.force_power import harmonic_power
-    from solvers.spectra import amplitude_spectrum
-    from pipeline.validation.references.radiation import DT, N, modal_velocity_reference, one_mode_model
-
     t = np.arange(N) * DT
     df = 1 / (N * DT)
     dev, rows = [], []
@@ -219,7 +212,6 @@ def write() -> str:
         "",
     ]
     text += efficiency_section()
-    from pipeline.validation.references.radiation import load_c20
 
     if ART.exists():
         _, p, s, _, _ = load_c20()

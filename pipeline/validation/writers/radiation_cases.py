@@ -8,15 +8,17 @@ import numpy as np
 
 from solvers.constants import F_MAX_HZ
 
-from solvers.radiation import surfaces as SF
-from solvers.radiation import thompson_jones as R
+from solvers.radiation import surfaces as SF, thompson_jones as R
 from solvers.spectra import amplitude_spectrum, dominant_frequency, force_level
 from solvers.wheel.receptance import modal_damping
 
 from pipeline.store.paths import ROOT
 from pipeline.validation.references import node_average as NA
-from pipeline.validation.references.radiation import ART
+from pipeline.validation.references.radiation import ART, load_c20
 from pipeline.validation.writers import DOCS, pyplot, save_figure
+from geometry.wheel import surface_radii
+from pipeline.store.artifacts import ArtifactError
+from pipeline.stages.radiate import compute_radiation, plot_radiation, sound_power_of_forces
 
 
 def spectra_section() -> list[str]:
@@ -55,8 +57,6 @@ def spectra_section() -> list[str]:
 
 
 def c20_section() -> list[str]:
-    from pipeline.validation.references.radiation import load_c20
-
     if not ART.exists():
         return ["### C20: unit-force sound power", "", "(C20 modal artifact not built: `make modes`.)", ""]
     t0 = time.perf_counter()
@@ -148,8 +148,6 @@ def c20_section() -> list[str]:
 
 
 def _radii(p):
-    from geometry.wheel import surface_radii
-
     return surface_radii(p)
 
 
@@ -176,9 +174,6 @@ def unit_force_plot(lat, rad, d):
 
 def default_case_section() -> list[str]:
     """The default case's sound power from the current artifacts (simulate.npz, modes.npz)."""
-    from pipeline.store.artifacts import ArtifactError
-    from pipeline.stages.radiate import compute_radiation, plot_radiation, sound_power_of_forces
-
     head = ["### The default case (dy_WR = -15 mm, mu = 0.35, gamma_y = -0.014)", ""]
     try:
         a, model, _ = compute_radiation("default")

@@ -13,8 +13,7 @@ import numpy as np
 from solvers.constants import F_MAX_HZ
 
 from geometry.rail import head_profile, section_properties
-from solvers.rail import response as rr
-from solvers.rail import waveguide as wg
+from solvers.rail import response as rr, waveguide as wg
 
 from pipeline.validation.references import beam
 from pipeline.validation.references.rail import assembled, direct_receptance, rail_model, rail_params
@@ -35,7 +34,7 @@ def context() -> dict:
 
 def section(md: list, c: dict) -> None:
     plt = pyplot()
-    import matplotlib.tri as mtri
+    import matplotlib.tri as mtri  # lazy: brings in matplotlib
 
     rows = ["| rail | quantity | model (polygon = FE mesh) | published | deviation |", "|---|---|---|---|---|"]
     for name in ("bv50", "60e1"):
@@ -100,7 +99,7 @@ def section(md: list, c: dict) -> None:
 
 def dispersion(md: list, c: dict) -> None:
     plt = pyplot()
-    from matplotlib.lines import Line2D
+    from matplotlib.lines import Line2D  # lazy: brings in matplotlib
 
     p, asm, mat, tors, E, nu, rho, G_s, model, zc = (c[k] for k in KEYS)
     ks = np.linspace(0.0, 30.0, 61)

@@ -9,8 +9,7 @@ import numpy as np
 from solvers.constants import F_MAX_HZ
 
 from geometry.rail import head_profile
-from solvers.rail import response as rr
-from solvers.rail import waveguide as wg
+from solvers.rail import response as rr, waveguide as wg
 
 from pipeline.validation.references import beam
 from pipeline.validation.references.rail import assembled, beam_params, rail_model

@@ -28,6 +28,11 @@ from solvers.constants import F_MAX_HZ
 from pipeline.store.paths import ROOT
 from pipeline.validation.make import make_targets
 from pipeline.validation.writers import DOCS, save_figure, save_fragment
+from solvers.greens.grid import RAIL_F_MAX, RAIL_F_TAPER, RAIL_LAGS, RAIL_NT, rail_taper
+from pipeline.config.loader import config_hash
+from pipeline.stages.rail import load_rail_params
+from pipeline.caches.rail_surface_table import kernel_from_waves, point_waves, SPACING
+from geometry.rail_mesh import mesh_rail
 
 BUILD = ROOT / "build"
 NEEDS = [BUILD / "rails" / "bv50" / "section.msh", BUILD / "cases" / "default" / "greens.npz",
@@ -36,18 +41,12 @@ DT, V = 36e-6, 50 / 3.6
 
 
 def _grid():
-    from solvers.greens.grid import RAIL_F_MAX, RAIL_F_TAPER, RAIL_LAGS, RAIL_NT
-
     return {"n_t": RAIL_NT, "n_lags": RAIL_LAGS, "f_max": RAIL_F_MAX, "f_taper": RAIL_F_TAPER}
 
 
 def default_point():
     """(table rows, surface kernel arrays, stored greens arrays, errors)."""
-    from pipeline.config.loader import config_hash
-    from solvers.greens.grid import rail_taper
-    from pipeline.stages.rail import load_rail_params
-    from pipeline.caches.rail_surface_table import kernel_from_waves, point_waves
-    from solvers.greens.kernels import frequency_grid
+    from solvers.greens.kernels import frequency_grid  # lazy: brings in numba, scipy
 
     pr, _ = load_rail_params("bv50")
     t0 = time.perf_counter()
@@ -66,7 +65,7 @@ def default_point():
 
 
 def simulate_both(g_surface):
-    from solvers.timeloop.interaction import WheelModes, contact_model, simulate
+    from solvers.timeloop.interaction import WheelModes, contact_model, simulate  # lazy: brings in numba, rocket_fft, scipy
 
     with np.load(NEEDS[1]) as d:
         wheel = WheelModes(d["wheel_f"], d["wheel_mass"], d["wheel_zeta"], d["wheel_phi"])
@@ -85,13 +84,9 @@ def between_nodes(y: float = 0.0135, every: int = 50):
     """Relative error of the point receptance at y (between two nodes of the standard mesh):
     surface table vs the direct model on a mesh with a node at y, at every ``every``-th
     frequency of the table."""
-    from geometry.rail_mesh import mesh_rail
-    from pipeline.config.loader import config_hash
-    from pipeline.stages.rail_io import build_rail_model
-    from pipeline.stages.rail import load_rail_params
-    from pipeline.caches.rail_surface_table import point_waves
-    from solvers.greens.kernels import frequency_grid
-    from solvers.rail.response import wave_table
+    from pipeline.stages.rail_io import build_rail_model  # lazy: brings in scipy
+    from solvers.greens.kernels import frequency_grid  # lazy: brings in numba, scipy
+    from solvers.rail.response import wave_table  # lazy: brings in scipy
 
     pr, _ = load_rail_params("bv50")
     k, a = point_waves(pr, config_hash(pr), y, DT, _grid())
@@ -111,10 +106,10 @@ def between_nodes(y: float = 0.0135, every: int = 50):
 
 
 def plot(d, fb, eb) -> None:
-    import matplotlib
+    import matplotlib  # lazy: brings in matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: brings in matplotlib
 
     fig, ax = plt.subplots(1, 2, figsize=(10, 3.6))
     G0 = d["ref"]["rail_point_receptance"]
@@ -139,8 +134,6 @@ def plot(d, fb, eb) -> None:
 
 
 def write() -> str:
-    from pipeline.caches.rail_surface_table import SPACING
-
     t0 = time.perf_counter()
     make_targets("rail", "contact", "greens", CASE="default")      # NEEDS
     d = default_point()

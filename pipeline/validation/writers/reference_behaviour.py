@@ -26,6 +26,12 @@ from solvers.constants import SQUEAL_LEVEL_DB
 from pipeline.store.paths import ROOT
 from pipeline.validation.make import make_targets
 from pipeline.validation.writers import save_fragment
+from pipeline.config.input_schemas import CASE
+from pipeline.config.loader import load
+from pipeline.store import artifacts, paths
+from pipeline.validation.reference import reference_table, position_summary, REFERENCE
+from pipeline.validation.limit_cycle_runs import tables
+from pipeline.validation.reference_rows import evaluate, markdown
 
 ROWS_MARK = "\n### The reference's findings row by row (issue 28)\n"
 
@@ -50,11 +56,6 @@ def map_rows():
 def map_summary(rows):
     """(markdown table, per position the summary of ``pipeline.validation.reference.reference_table``, the wheel
     modes (f, labels) per case)."""
-    from pipeline.config.input_schemas import CASE
-    from pipeline.config.loader import load
-    from pipeline.store import artifacts, paths
-    from pipeline.validation.reference import reference_table
-
     modes = {}
     for case in {r["case"] for r in rows}:
         m, _ = artifacts.load_npz(paths.wheel_dir(load(paths.case_file(case), CASE)["wheel"]) / "modes.npz", "wheel-modes")
@@ -65,15 +66,11 @@ def map_summary(rows):
 
 def minus_5_summary(rows, modes):
     """At -5 mm the cases with mu < 0.45 (``reference.position_summary``): the reference names (2,0,a) there."""
-    from pipeline.validation.reference import position_summary
-
     m5 = modes[next(r["case"] for r in rows if round(1e3 * r["dy_wr"]) == -5)]
     return position_summary([r for r in rows if round(1e3 * r["dy_wr"]) == -5 and r["mu"] < 0.45], *m5)
 
 
 def map_section() -> str:
-    from pipeline.validation.reference import REFERENCE
-
     name, rows = map_rows()
     table, summ, modes = map_summary(rows)
     s5 = minus_5_summary(rows, modes)
@@ -107,9 +104,6 @@ Share of the squealing cases in the reference's L_W band: {bands}.
 
 
 def rows_section() -> str:
-    from pipeline.validation.limit_cycle_runs import tables
-    from pipeline.validation.reference_rows import evaluate, markdown
-
     rows = evaluate(tables())
     section = f"""{ROWS_MARK}
 Asserted by `tests/study/test_reference_behaviour.py` (the parts reproduced and not), from

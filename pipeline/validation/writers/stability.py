@@ -26,6 +26,10 @@ from pipeline.validation.make import ensure_case, make_targets
 from pipeline.validation.references.falling import falling_contact
 from pipeline.validation.references.growth import linear_phase, measured_growth, pencil_growth
 from pipeline.validation.writers import save_fragment
+from pipeline.store import paths
+from pipeline.stages.stability import case_linear_model
+from solvers.study import nearest_mode
+import csv
 
 CASES = ("dy05", "dy10", "default")
 
@@ -40,8 +44,6 @@ def build() -> None:
 
 
 def _inputs(case: str) -> list:
-    from pipeline.store import paths
-
     return [paths.case_dir(case) / "contact.npz", paths.case_dir(case) / "greens.npz"]
 
 
@@ -55,11 +57,8 @@ def run_case(case):
 def _run_case(case):
     """(unstable screen roots as (label, f, sigma screen, sigma measured), the squealing mode, its frequency,
     the linear phase's length) of a case at its own settings."""
-    from pipeline.store import paths
-    from pipeline.stages.stability import case_linear_model
-    from solvers.timeloop.interaction import WheelModes, contact_model, simulate
-    from solvers.stability.screen import screen
-    from solvers.study import nearest_mode
+    from solvers.timeloop.interaction import WheelModes, contact_model, simulate  # lazy: brings in numba, rocket_fft, scipy
+    from solvers.stability.screen import screen  # lazy: brings in numba
 
     c, lm, labels, f_open = case_linear_model(case)
     roots = screen(lm)
@@ -131,8 +130,6 @@ def full_grid_decision(margin: float = 0.5) -> tuple[str, list]:
     the screen below -margin), from the full map and its stability map (the screened run simulates
     the other cases exactly as the full run: bit-identical on the quick grid, below): (text, the squealing
     cases it would skip)."""
-    import csv
-
     a, s = (ROOT / "build" / "studies" / "map" / n for n in ("map.csv", "stability.csv"))
     if not (a.exists() and s.exists()):
         return "", []
@@ -152,8 +149,6 @@ def screened_check() -> tuple[str, list, list]:
     """Every squealing case of the full run is found by the screened run (and the simulated cases are
     bit-identical); the full grid when both full maps exist, else the quick grids: (text, squealing cases
     the screened run missed, simulated cases that differ)."""
-    import csv
-
     for full, scr in (("map", "map-screened"), ("map-quick", "map-screened-quick")):
         a, b = (ROOT / "build" / "studies" / n / "map.csv" for n in (full, scr))
         if a.exists() and b.exists():
@@ -192,10 +187,8 @@ def _run_falling(case):
     (matrix pencil, and the windowed demodulation of the Coulomb table beside it) measured from
     steady rolling with a kick of 1e-9 N s (mild) or 1e-13 N s (moderate: the faster growth leaves
     less time before 1e-4, the slow poles must stay above the rounding of F2, ~1e-11 N)."""
-    from pipeline.store import paths
-    from pipeline.stages.stability import case_linear_model
-    from solvers.timeloop.interaction import WheelModes, contact_model, simulate
-    from solvers.stability.screen import linearise, screen
+    from solvers.timeloop.interaction import WheelModes, contact_model, simulate  # lazy: brings in numba, rocket_fft, scipy
+    from solvers.stability.screen import linearise, screen  # lazy: brings in numba
 
     c, lm, labels, _ = case_linear_model(case)
     cm = contact_model(np.load(paths.case_dir(case) / "contact.npz"), c["friction"]["mu"])

@@ -21,12 +21,19 @@ import csv
 import math
 import tempfile
 from pathlib import Path
+import os
 
 import numpy as np
 
 from pipeline.validation.make import ensure_case, make_targets
 from pipeline.validation.references.damping import linear_critical_damping, run_procedure
 from pipeline.validation.writers import DOCS, pyplot, save_figure, save_fragment
+from pipeline.store import artifacts, paths
+from pipeline.study import stage as study_stage
+from pipeline.config.loader import load
+from pipeline.config.input_schemas import CASE
+from pipeline.stages.simulate import simulate_config
+from pipeline.validation.references.interaction import DT, V, beam_kernel, hertz_contact
 
 CASES = ("dy05", "dy10", "default")
 VARIANTS = [  # (label, f_r Hz, modal mass kg, (Phi_2, Phi_3), mu)
@@ -38,14 +45,6 @@ VARIANTS = [  # (label, f_r Hz, modal mass kg, (Phi_2, Phi_3), mu)
 
 
 def map_vs_simulate() -> tuple[list, list]:
-    import os
-
-    from pipeline.store import artifacts, paths
-    from pipeline.study import stage as study_stage
-    from pipeline.config.loader import load
-    from pipeline.config.input_schemas import CASE
-    from pipeline.stages.simulate import simulate_config
-
     sims, lines = {}, []
     for case in CASES:
         ensure_case(case)
@@ -88,8 +87,6 @@ def map_vs_simulate() -> tuple[list, list]:
 
 
 def damping_vs_linear(plot: bool = True) -> tuple[list, list]:
-    from pipeline.validation.references.interaction import DT, V, beam_kernel, hertz_contact
-
     g = beam_kernel(DT, V)
     out, lines, logs = [], [], []
     for label, f, m, phi, mu in VARIANTS:

@@ -16,11 +16,15 @@ import numpy as np
 from solvers.timeloop.interaction import WheelModes, contact_model, simulate
 from solvers.timeloop.two_point_driver import SecondPoint, simulate_two
 
-from pipeline.store.paths import ROOT
+from pipeline.store.paths import ROOT, case_file
 from pipeline.validation.make import make_targets
 from pipeline.validation.references import two_point as tp
 from pipeline.validation.references.interaction import DT
 from pipeline.validation.writers import save_fragment
+from pipeline.config.loader import load as load_toml
+from pipeline.config.input_schemas import CASE
+from solvers.greens.kernels import choose_grid, frequency_grid
+from pipeline.validation.references.greens import wheel_case
 
 CASES = ROOT / "build" / "cases"
 POSITIONS = ("dy05", "dy05_angle", "dy10", "dy10_angle", "default", "default_angle")
@@ -38,10 +42,6 @@ def load(case: str, name: str):
 
 
 def case_settings(case: str) -> dict:
-    from pipeline.config.loader import load as load_toml
-    from pipeline.store.paths import case_file
-    from pipeline.config.input_schemas import CASE
-
     return load_toml(case_file(case), CASE)
 
 
@@ -64,10 +64,6 @@ def position_row(case: str) -> str:
 
 def unit_numbers() -> dict:
     """The reductions of the two-point loop and screen to one point, and the projected kernel's error."""
-    from solvers.greens.kernels import choose_grid, frequency_grid
-
-    from pipeline.validation.references.greens import wheel_case
-
     structs = tp.structures()
     one, two = tp.loop_unloaded_second_point(*structs)
     r1 = dict(max_rel=max(tp.rel(getattr(two.a, k), getattr(one, k)) for k in

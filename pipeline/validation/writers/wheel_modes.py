@@ -25,6 +25,10 @@ from postprocess.modes.reference import markdown_table, match_modes, summary
 from pipeline.stages.wheel import load_wheel, modes_for_parameters, reference_rows
 from pipeline.validation.references.greens import DATA
 from pipeline.validation.writers import DOCS, pyplot, save_figure, save_fragment
+from pipeline.validation.references.plates import A, B, DISC_A as DA, DISC_H as DH, E, H, NU, RHO, disc_segments, plate_segments
+from geometry.mesher import mesh_section, read_msh
+from solvers.wheel.axisym import HarmonicSolver
+from geometry.wheel import wheel_segments
 
 REF = DATA / "c20_modes.csv"
 
@@ -38,12 +42,8 @@ def _scaled(p: dict, factor: float) -> dict:
 
 def plate_rows(tmp_path: Path) -> tuple[list[str], float]:
     """(table rows, worst relative deviation) of the plates' flexural modes against Kirchhoff's."""
-    from pipeline.validation.references.annular_plate import annular_plate_frequencies
-    from pipeline.validation.references.free_disc import free_disc_nondimensional
-    from pipeline.validation.references.plates import (A, B, DISC_A as DA, DISC_H as DH, E, H, NU, RHO,
-                                                       disc_segments, plate_segments)
-    from geometry.mesher import mesh_section, read_msh
-    from solvers.wheel.axisym import HarmonicSolver
+    from pipeline.validation.references.annular_plate import annular_plate_frequencies  # lazy: brings in scipy
+    from pipeline.validation.references.free_disc import free_disc_nondimensional  # lazy: brings in scipy
 
     rows = ["| plate | n | nodal circles | exact (Hz) | harmonic FE (Hz) | error |", "|---|---|---|---|---|---|"]
     names = mesh_section(plate_segments(), str(tmp_path / "plate.msh"))
@@ -150,7 +150,6 @@ def write_c20(tmp_path: Path) -> str:
     ax.set_title("C20 eigenfrequencies vs reference (red: (n,0,a) modes, limit 3 %)")
     fig.tight_layout()
     save_figure(fig, DOCS / "c20_modes.png", dpi=110)
-    from geometry.wheel import wheel_segments
 
     fig, ax = plt.subplots(figsize=(4.5, 6))
     for seg in wheel_segments(p):

@@ -119,7 +119,6 @@ def solve_falling(op: TangentialOperator, ix, iy, r, p3, law: FrictionLaw, dt, p
     return FallingResult(res, g, outer, converged)
 
 
-
 def transient_falling(step, law: FrictionLaw, p3, ix, iy, speed=None):
     """One transient step with the local coefficient mu(|s|) of `law`: the same outer iteration
     around ``step(mu_el)`` (``tang.pcg.transient_step_law`` with the problem bound, mu_el (N,) the

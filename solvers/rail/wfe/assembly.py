@@ -37,9 +37,9 @@ def assemble(mesh, cell_tags, facet_tags, degree: int = 2) -> Assembled:
     """Assemble the waveguide matrices of the half section once (JIT: four
     forms).  Region coefficients are DG0 indicator functions so that one
     compiled form serves all (region, part) combinations."""
-    import ufl
-    from dolfinx import fem
-    from dolfinx.fem.petsc import assemble_matrix
+    import ufl  # lazy: brings in ufl (and PETSc's signal handlers)
+    from dolfinx import fem  # lazy: brings in dolfinx (and PETSc's signal handlers)
+    from dolfinx.fem.petsc import assemble_matrix  # lazy: brings in dolfinx (and PETSc's signal handlers)
 
     V = fem.FunctionSpace(mesh, ufl.VectorElement("Lagrange", mesh.ufl_cell(), degree, dim=3))
     Q = fem.FunctionSpace(mesh, ("DG", 0))

@@ -8,6 +8,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from solvers.rail.wfe.assembly import RAIL_TAG, Assembled
+from solvers.wheel.eigen import eigenvalues, shift_invert
 
 
 # --------------------------------------------------------------------------- one wave family
@@ -85,7 +86,7 @@ def family(asm: Assembled, mat: dict, name: str, supported: bool = True) -> Fami
 
 # --------------------------------------------------------------------------- dispersion (real k, SLEPc)
 def _petsc(A):
-    from petsc4py import PETSc
+    from petsc4py import PETSc  # lazy: brings in petsc4py (and PETSc's signal handlers)
 
     A = A.tocsr()
     return PETSc.Mat().createAIJ(size=A.shape, csr=(A.indptr.astype(PETSc.IntType),
@@ -98,8 +99,6 @@ def eig_real_k(fam: Family, k: float, fmax: float, nev_min: int = 12, tol: float
     <= fmax (Hz): (K0 + k K1 + k^2 K2) phi = w^2 M phi by SLEPc shift-invert
     (MUMPS) about a small negative shift.  Returns (f_hz (n,), phi (N, n)
     M-normalised, or None)."""
-    from solvers.wheel.eigen import eigenvalues, shift_invert
-
     K = _petsc(fam.K(k))
     M = _petsc(fam.M)
     sigma = -(2 * np.pi * 2.0) ** 2

@@ -15,9 +15,9 @@ def torsion_properties(mesh, cell_tags, degree: int = 2) -> dict:
     z_s (on y = 0 by symmetry) and the warping constant Gamma (full section,
     sectorial coordinate about the shear centre).  Coordinates (y, z) with
     z from the foot underside; centroid from the same mesh."""
-    import ufl
-    from dolfinx import fem, mesh as dmesh
-    from dolfinx.fem.petsc import LinearProblem
+    import ufl  # lazy: brings in ufl (and PETSc's signal handlers)
+    from dolfinx import fem, mesh as dmesh  # lazy: brings in dolfinx (and PETSc's signal handlers)
+    from dolfinx.fem.petsc import LinearProblem  # lazy: brings in dolfinx (and PETSc's signal handlers)
 
     # sub-mesh of the steel cells
     cells = cell_tags.indices[cell_tags.values == RAIL_TAG]

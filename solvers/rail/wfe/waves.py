@@ -111,7 +111,7 @@ def dispersion(fam: Family, ks, fmax: float, rail: dict, zc: float, snapshots: d
     Returns {'k': (nk,), 'f': (nk, nb) Hz NaN where a branch does not
     exist, 'label': (nb,) majority label of each branch, 'point_label':
     (nk, nb) per-point labels ('' where absent)}."""
-    from scipy.optimize import linear_sum_assignment
+    from scipy.optimize import linear_sum_assignment  # lazy: brings in scipy
 
     ks = np.asarray(ks, float)
     branches: list[dict] = []
