@@ -95,7 +95,7 @@ def hundred_curves(tmp: Path) -> dict:
 
 def side_by_side() -> dict:
     from pipeline.study.line_input import LineRow, line_curves
-    from pipeline.study.definition import load_study
+    from pipeline.study.kinds import load_study
     from pipeline.curve import screen_first
     from pipeline.study.radius import design
     from pipeline.curve.stage import run_curve

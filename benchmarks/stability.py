@@ -24,7 +24,7 @@ from solvers.stability.screen import Basis, screen
 def run() -> str:
     from pipeline.study.screen import screen_rows
     from pipeline.study.definition import grid_of
-    from pipeline.study.definition import load_study
+    from pipeline.study.kinds import load_study
 
     _, lm, _, _ = case_linear_model("default")
     t_basis = median_time(lambda: Basis(lm), 5, warm=1)

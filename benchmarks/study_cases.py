@@ -25,7 +25,7 @@ def run() -> str:
     from benchmarks.baseline import BASELINE, previous
     from pipeline.study.context import load_context
     from pipeline.study.definition import grid_of
-    from pipeline.study.definition import load_study
+    from pipeline.study.kinds import load_study
     from pipeline.study.worker import _contact, _warm, _wheel
     from solvers.timeloop.interaction import StopRule, simulate
 

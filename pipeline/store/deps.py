@@ -21,7 +21,8 @@ are followed further.  So ``stages.radiate.run_radiate`` calling ``stages.wheel.
 makes radiate depend on what ``load_wheel`` uses, not on the mode renderer that
 ``stages.wheel.run_shapes`` imports.  Over-approximations are harmless (an extra rebuild);
 the analysis misses only names built at run time (``getattr(m, "f" + x)``,
-``importlib``), which the stages do not use.
+``importlib``), which the stages do not use, except a package that finds its modules at run time (it says
+so: ``DISCOVERS_SUBMODULES = True``, e.g. pipeline/study/kinds/): every module in it is followed, whole.
 
 The only module names used here are the stages' entry points (``ENTRIES``, from the stage table
 ``pipeline/stages/__init__.py`` that the command line reads too); everything else is found from the
@@ -61,6 +62,9 @@ class Module:
         self.tree = ast.parse(path.read_text(), filename=str(path))
         self.defs = {n.name: n for n in self.tree.body if isinstance(n, DEFS)}
         self.ns: dict = {}  # names bound by module-level imports -> module name or (module, symbol)
+        self.discovers = is_package and any(     # a package that imports its modules at run time
+            isinstance(n, ast.Assign) and any(getattr(t, "id", "") == "DISCOVERS_SUBMODULES" for t in n.targets)
+            for n in self.tree.body)
 
 
 def _walk_outside_defs(body):
@@ -110,6 +114,11 @@ class Graph:
             nodes = list(_walk_outside_defs(mod.tree.body))
             mod.ns = self.bind(mod, nodes)
             self.refer(mod, {}, nodes)
+            if mod.discovers:
+                for sub in sorted(mod.path.parent.glob("[!_]*.py")):   # found at run time (importlib): all of them
+                    self.load(f"{name}.{sub.stem}")
+                    for fn in self.module(f"{name}.{sub.stem}").defs:
+                        self.reach(f"{name}.{sub.stem}", fn)
         return mod
 
     def bind(self, mod: Module, nodes) -> dict:

@@ -2,10 +2,10 @@
 names its kind, and
 
 * ``stage``: ``python -m pipeline study --study NAME`` (load, validate, run or resume, log);
-* ``schemas``: the study files' schemas, one per kind;
-* ``map``, ``damping``, ``contact``: the three kinds of SPEC 7 (tasks of a study, its outputs);
-* ``line`` (with ``line_input``, ``line_worker``, ``line_rules``, ``line_outputs``): a line of curves, each
-  curve's verdict screen first, the CNOSSOS-EU and Schall 03 penalties beside it; ``check``: ``make check
+* ``kinds``: one module per study kind, found by name (its schema ``SCHEMA`` and its ``run``): ``map``,
+  ``damping``, ``contact`` (the three kinds of SPEC 7) and ``line`` (with ``line_input``, ``line_worker``,
+  ``line_rules``, ``line_outputs``: a line of curves, each curve's verdict screen first, the CNOSSOS-EU and
+  Schall 03 penalties beside it); ``schemas``: the parts the kinds' schemas share; ``check``: ``make check
   STUDY=``;
 * ``tasks``: the typed task records a kind hands to the workers;
 * ``context``: a contact position's data (artifacts), loaded once and scattered to the workers;

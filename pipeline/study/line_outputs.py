@@ -1,4 +1,4 @@
-"""The line study's outputs (``pipeline.study.line``): line.csv, the two figures, the NoiseModelling
+"""The line study's outputs (``pipeline.study.kinds.line``): line.csv, the two figures, the NoiseModelling
 export of the squealing curves and line.md / summary.md, the verdict first."""
 from __future__ import annotations
 

@@ -25,7 +25,8 @@ from pipeline.store.atomic import save_figure
 from pipeline.stages.stability import case_linear_model
 from pipeline.caches.friction_curves import with_curves
 from pipeline.config.case import resolve_case
-from pipeline.study.definition import grid_of, load_study
+from pipeline.study.definition import grid_of
+from pipeline.study.kinds import load_study
 from pipeline.study.agreement import write_agreement
 from postprocess.plots.stability import map_figure
 

@@ -1,11 +1,10 @@
 """Study stage (SPEC 7): ``python -m pipeline study --study NAME [--quick] [--scheduler ADDR]
 [--workers N] [--out DIR]``.
 
-A study is defined by pipeline/studies/<NAME>.toml (schemas in pipeline/study/schemas.py):
-``kind = "map"`` (creepage/friction map, pipeline/study/map.py), ``"damping"`` (wheel modal
-damping study, damping.py), ``"contact"`` (contact-model validation, contact.py) or ``"line"`` (a line of
-curves, each curve's verdict screen first and the noise-mapping rules beside it, line.py).  The cases
-run on Dask (pipeline/study/runner.py),
+A study is defined by pipeline/studies/<NAME>.toml; its ``kind`` names a module of pipeline/study/kinds/
+(its schema ``SCHEMA`` and its ``run``): ``map`` (creepage/friction map), ``damping`` (wheel modal damping),
+``contact`` (contact-model validation) or ``line`` (a line of curves, each curve's verdict screen first and the
+noise-mapping rules beside it).  The cases run on Dask (pipeline/study/runner.py),
 their rows are appended to the study's table as they finish; rerunning the command resumes an
 interrupted study and only renders the outputs of a finished one.
 
@@ -27,16 +26,10 @@ from pathlib import Path
 
 from pipeline.store import artifacts, paths
 from pipeline.config.loader import ConfigError
-from pipeline.study.definition import load_study
-from pipeline.study import contact, damping, line, map
+from pipeline.study.kinds import kind_module, load_study
 from pipeline.study.runner import local_cluster, study_client
 
 log = logging.getLogger("pipeline.study")
-
-
-def _kind_module(kind: str):
-    """The module that runs a study of this kind: ``run(spec, src, out, ...)``."""
-    return {"map": map, "damping": damping, "contact": contact, "line": line}[kind]
 
 
 class LazyClient:
@@ -106,7 +99,7 @@ def run_study(name: str, *, quick: bool = False, scheduler: str | None = None, w
     out = Path(out) if out else paths.build() / "studies" / (spec["name"] + ("-quick" if quick else ""))
     made = next((p for p in reversed([out, *out.parents]) if not p.exists()), None)   # the first folder made here
     out.mkdir(parents=True, exist_ok=True)
-    mod = _kind_module(spec["kind"])
+    mod = kind_module(spec["kind"])
     client = LazyClient(scheduler, workers)
     t0 = time.perf_counter()
     try:

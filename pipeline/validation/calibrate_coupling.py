@@ -24,7 +24,8 @@ import itertools
 import numpy as np
 from pipeline.store import artifacts, paths
 from pipeline.stages.stability import case_linear_model
-from pipeline.study.definition import grid_of, load_study
+from pipeline.study.definition import grid_of
+from pipeline.study.kinds import load_study
 from pipeline.study.screen import grid_roots
 
 CASES = {"dy05": "(2,0,a)", "dy10": "(3,0,a)", "default": "(2,0,a)"}

@@ -29,7 +29,8 @@ from pipeline.store import paths, artifacts
 from pipeline.caches.friction_curves import with_curves
 from pipeline.stages.stability import case_linear_model
 from pipeline.study.screen import grid_roots
-from pipeline.study.definition import grid_of, load_study
+from pipeline.study.definition import grid_of
+from pipeline.study.kinds import load_study
 from pipeline.config.loader import load
 from pipeline.config.input_schemas import CASE as CASE_SCHEMA
 from pipeline.stages.wheel import load_wheel

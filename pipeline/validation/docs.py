@@ -32,7 +32,7 @@ INPUT_PAGES = (
     ("Wheel", "geometry/wheels/<name>.toml", "pipeline.config.input_schemas", "WHEEL"),
     ("Rail", "geometry/rails/<name>.toml", "pipeline.config.input_schemas", "RAIL"),
     ("Case", "pipeline/cases/<name>.toml", "pipeline.config.input_schemas", "CASE"),
-    ("Study (`kind` picks the schema)", "pipeline/studies/<name>.toml", "pipeline.study.schemas", "SCHEMAS"),
+    ("Study (`kind` picks the schema)", "pipeline/studies/<name>.toml", "pipeline.study.kinds", "NAMES"),
     ("A line study's curves (CSV columns, one row per curve, vehicle and friction condition)",
      "pipeline/studies/<curves>.csv", "pipeline.study.line_input", "ROW_SCHEMA"),
     ("Vehicle", "geometry/vehicles/<name>.toml", "pipeline.config.curve_schemas", "VEHICLE"),
@@ -113,9 +113,9 @@ def inputs_text() -> str:
         if schema is None:
             continue
         parts.append(f"## {title}: `{pattern}`\n")
-        if attr == "SCHEMAS":  # kind -> schema
-            for kind, sub in schema.items():
-                parts.append(f"### `kind = \"{kind}\"`\n\n" + _table(sub))
+        if attr == "NAMES":  # the study kinds: each module's SCHEMA
+            for kind in schema:
+                parts.append(f"### `kind = \"{kind}\"`\n\n" + _table(mod.kind_module(kind).SCHEMA))
         else:
             parts.append(_table(schema))
     return "\n".join(parts)

@@ -30,7 +30,7 @@ import json
 import numpy as np
 
 from pipeline.store import paths, artifacts
-from pipeline.study.definition import load_study
+from pipeline.study.kinds import load_study
 from pipeline.study.tasks import Simulation
 from pipeline.stages.stability import case_linear_model
 from pipeline.study.context import load_context

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from pipeline.study.map import lw_table
+from pipeline.study.kinds.map import lw_table
 from postprocess.plots.study import LOW_LABEL, map_figure, mode_categories
 
 GAMMA = np.array([-0.06, -0.04, -0.02, -0.01])

@@ -22,7 +22,8 @@ import pytest
 from pipeline.caches import friction_curves, rail_kernel, rail_surface_table
 from pipeline.store import deps
 from pipeline.store.code_hash import code_key, reached_files
-from pipeline.study import context, line
+from pipeline.study import context
+from pipeline.study.kinds import line
 from pipeline.validation.make import ensure_case
 
 ROOT = Path(__file__).resolve().parents[2]

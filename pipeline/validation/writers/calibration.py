@@ -24,7 +24,8 @@ from pipeline.validation.calibrate_wheel import tread_ratio, TARGETS
 from geometry.wheel import tread_radius
 from pipeline.store import artifacts, paths
 from pipeline.validation.calibrate_suspension import CASE, MU_LOUD, MU_QUIET, lf_growth
-from pipeline.study.definition import grid_of, load_study
+from pipeline.study.definition import grid_of
+from pipeline.study.kinds import load_study
 from pipeline.stages.wheel import load_wheel, reference_rows
 from postprocess.modes.reference import match_modes, summary
 from solvers.constants import F_MAX_HZ, THESIS_CONTACT_POINTS_FIELD

@@ -7,7 +7,7 @@ import numpy as np
 
 from pipeline.validation.writers import DOCS, pyplot, save_figure, save_fragment
 from geometry.contact_point import rigid_contact, FlangeContact, TrackRail, wheel_shift
-from pipeline.study.map import map_mus
+from pipeline.study.kinds.map import map_mus
 from geometry.calibration import THESIS_POSITIONS, jump_offsets, BOUNDS, NAMES
 from pipeline.config.case_profiles import read_profile
 from pipeline.stages.rail import load_rail_params

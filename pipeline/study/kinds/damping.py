@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.store import paths
-from pipeline.config.loader import config_hash
+from pipeline.config.loader import config_hash, Field
 from pipeline.study.results_table import ResultsTable
 from pipeline.progress import progress as progress_bar
 from pipeline.study.runner import Task, pending, run_tasks
@@ -25,6 +25,7 @@ from pipeline.study.context import load_context
 from postprocess.plots.study import damping_figure
 from pipeline.store.artifacts import save_csv
 from pipeline.store.atomic import save_figure, save_text
+from pipeline.study.schemas import COMMON, OPERATING, SIMULATION
 
 log = logging.getLogger("pipeline.study")
 
@@ -33,6 +34,24 @@ COLUMNS = {"step": int, "model": str, "mode": int, "zeta_mode": float, "n_modes"
            "t_end": float, "L_W": float, "f_sound": float, "wall_s": float, "worker": str}
 STEP_COLUMNS = ["step", "L_F2", "f_dominant", "mode", "label", "f_mode", "zeta_nominal", "zeta_lo", "zeta_hi",
                 "bisection_model", "runs", "excluded", "note"]
+
+
+# the study file's keys (pipeline/studies/<name>.toml with kind = "damping")
+SCHEMA = COMMON | {
+    "operating": OPERATING,
+    "bisection": {
+        "zeta_max": Field(float, min=1e-4, max=1.0, default=0.1,
+                          doc="upper end of the bracket: a mode still squealing there ends the study"),
+        "rel_tol": Field(float, min=1e-3, max=1.0, default=0.05,
+                         doc="stop when zeta_hi / zeta_lo - 1 <= rel_tol (geometric bisection)"),
+    },
+    "procedure": {
+        "max_steps": Field(int, min=1, max=30, default=8, doc="modes damped at most"),
+        "mode_match": Field(float, min=0.001, max=0.5, default=0.05,
+                            doc="the squeal frequency must be within this (relative) of the mode's"),
+    },
+    "simulation": SIMULATION,
+}
 
 
 def operating(spec: dict, ctx) -> tuple[float, float]:

@@ -25,7 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.store import paths
-from pipeline.config.loader import config_hash
+from pipeline.config.loader import config_hash, Field, ListOf
 from pipeline.study.results_table import ResultsTable
 from pipeline.study.runner import Task, pending, run_tasks
 from pipeline.study.tasks import CreepageTask, ModeTask, Simulation
@@ -35,6 +35,8 @@ from pipeline.study.context import load_context
 from postprocess.plots.study import contact_modes_figure, creepage_figure
 from pipeline.store.artifacts import save_csv
 from pipeline.store.atomic import save_figure, save_text
+from pipeline.study.schemas import COMMON, OPERATING, SIMULATION
+from solvers.constants import F_MAX_HZ
 
 log = logging.getLogger("pipeline.study")
 
@@ -43,6 +45,38 @@ COLUMNS = {"case": str, "part": str, "model": str, "mode": int, "label": str, "f
            "F2_phase": float, "L_W": float, "f_sound": float, "contact_loss": float, "stop_reason": str,
            "t_end": float, "wall_s": float, "worker": str}
 MODELS = ("kalker", "point")           # Kalker first: the long tasks start first
+
+
+# the study file's keys (pipeline/studies/<name>.toml with kind = "contact")
+SCHEMA = COMMON | {
+    "operating": OPERATING,
+    "modes": {
+        "classes": ListOf(Field(str, choices=["a", "r", "c"]), min_len=1, default=["a"],
+                          doc="mode classes simulated one at a time"),
+        "nodal_circles_max": Field(int, min=0, max=5, default=0),
+        "f_min": Field(float, unit="Hz", min=0.0, max=20000.0, default=100.0),
+        "f_max": Field(float, unit="Hz", min=0.0, max=20000.0, default=F_MAX_HZ),
+        "zeta_kept": Field(float, min=0.0, max=1.0, default=1e-6, doc="damping of the mode kept (SPEC 7)"),
+        "zeta_others": Field(float, min=0.0, max=10.0, default=1.0, doc="damping of the other flexible modes"),
+        "kick": Field(float, unit="N s", min=0.0, max=100.0, default=0.01,
+                      doc="lateral impulse at t = 0 (a larger one shortens the growth; the limit cycle does not depend on it)"),
+    },
+    "simulation": SIMULATION,
+    "creepage": {
+        "gamma_0": Field(float, min=-0.2, max=0.2, default=-0.003, doc="mean lateral creepage"),
+        "amplitude": Field(float, min=0.0, max=0.2, default=0.001, doc="amplitude of the sinusoidal creepage"),
+        "frequencies": ListOf(Field(float, unit="Hz", min=1.0, max=10000.0), min_len=1,
+                              default=[100.0, 300.0, 1000.0, 3000.0]),
+        "periods": Field(int, min=1, max=1000, default=3, doc="whole periods the response is measured over"),
+        "settle": Field(float, unit="s", min=0.0, max=1.0, default=0.01,
+                        doc="run-in before the measured periods (at least one period)"),
+    },
+    "quick": {
+        "max_modes": Field(int, min=1, max=100, default=3, doc="--quick: the lowest modes only"),
+        "duration": Field(float, unit="s", min=0.01, max=8.0, default=0.05),
+        "frequencies": ListOf(Field(float, unit="Hz", min=1.0, max=10000.0), min_len=1, default=[1000.0]),
+    },
+}
 
 
 def selected_modes(spec: dict, ctx, quick: bool) -> list[int]:

@@ -18,13 +18,14 @@ import logging
 from pathlib import Path
 
 from pipeline.store import paths
-from pipeline.config.loader import config_hash
-from pipeline.study.line_input import LineRow, line_curves, read_rows
+from pipeline.config.loader import config_hash, Field
+from pipeline.study.line_input import LineRow, check as check_rows, line_curves, read_rows
 from pipeline.study.line_worker import LineContext, LineTask, band_columns, line_case, prepare_worker
 from pipeline.study.results_table import ResultsTable
 from pipeline.study.runner import Task, pending, run_tasks
 from pipeline.store.code_hash import code_key
 from pipeline.study.line_outputs import write_outputs
+from pipeline.study.schemas import COMMON
 
 log = logging.getLogger("pipeline.study")
 
@@ -36,6 +37,43 @@ ROW_COLUMNS = {"id": str, "chainage_m": float, "radius_m": float, "cant_mm": flo
 RESULT_COLUMNS = {"curve": str, "squeals": int, "wheel": str, "f_squeal": float, "mode": str, "L_pA": float,
                   "L_W": float, "L_F2": float, "squealing_wheels": str, "unstable_wheels": str,
                   "time_loop_wheels": str, "aoa_mrad": float, "note": str}
+
+
+# the study file's keys (pipeline/studies/<name>.toml with kind = "line")
+SCHEMA = {
+    "name": COMMON["name"],
+    "kind": COMMON["kind"],
+    "description": COMMON["description"],
+    "curves": Field(str, doc="the line's curves: a CSV file, its path relative to the study file's folder "
+                             "(pipeline/studies/<curves>) or absolute (anywhere), one row per curve, vehicle and "
+                             "friction condition, columns id, chainage_m, radius_m, cant_mm, length_m, speed_kmh, "
+                             "vehicle (a vehicle file beside the CSV, else geometry/vehicles/), friction "
+                             "(pipeline/study/line_input.py)"),
+    "base_curve": Field(str, default="r150", doc="pipeline/curves/<base_curve>.toml, or a curve file's path (relative "
+                                                 "to the study file's folder): the rail, gauge, gauge widening and "
+                                                 "traction of every curve of the line"),
+    "friction": {
+        "dry_mu": Field(float, min=0.05, max=1.0, default=0.4,
+                        doc="Coulomb coefficient of the CSV's friction condition 'dry'"),
+        "wet_mu": Field(float, min=0.05, max=1.0, default=0.15,
+                        doc="Coulomb coefficient of the CSV's friction condition 'wet'"),
+    },
+    "what_ifs": Field(bool, default=False, doc="the curve verdict's mitigation what-ifs for every squealing wheel "
+                                               "(friction threshold, modal damping; slower)"),
+    "wheel_figures": Field(bool, default=False, doc="the stages' figures and the pass-by of each squealing wheel "
+                                                    "(contact_rf.png, greens.png, simulate.png, radiate.png, the "
+                                                    "listen PNG, passby_*; its npz, CSV, exports and listen WAV are "
+                                                    "written either way)"),
+    "quick": {
+        "rows": Field(int, min=1, max=100000, default=3, doc="--quick: the CSV's first rows only"),
+    },
+    "export": {
+        "passages_day": Field(float, unit="1/h", min=0.0, max=1000.0, default=1.0,
+                              doc="squealing passages per hour in the LW_RAILWAY export's day period (D)"),
+        "passages_evening": Field(float, unit="1/h", min=0.0, max=1000.0, default=1.0, doc="evening period (E)"),
+        "passages_night": Field(float, unit="1/h", min=0.0, max=1000.0, default=1.0, doc="night period (N)"),
+    },
+}
 
 
 def columns() -> dict:
@@ -84,3 +122,8 @@ def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool 
         stats |= {"run_wall_s": round(r.wall, 3), "dask_workers": r.workers}
     write_outputs(spec, src, out, quick, rows, [table.rows.get(t.key) for t in tasks])
     return stats
+
+
+def check(spec: dict) -> str:
+    """``make check STUDY=``: every row of the line's CSV of curves and each row's curve file (ConfigError)."""
+    return f"{len(check_rows(spec))} curves from {spec['curves']}"

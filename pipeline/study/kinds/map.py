@@ -13,16 +13,18 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.store import paths
-from pipeline.config.loader import config_hash
+from pipeline.config.loader import config_hash, Field
 from pipeline.study.results_table import ResultsTable
 from pipeline.study.runner import Task, pending, run_tasks
-from pipeline.study.definition import grid_of, load_study
+from pipeline.study.definition import grid_of
+from pipeline.study.kinds import load_study
 from pipeline.study.tasks import MapTask, Simulation
 from pipeline.study.screen import screen_rows
 from pipeline.study.context import load_context
 from postprocess.plots.study import map_figure, mode_categories
 from pipeline.store.artifacts import save_csv
 from pipeline.store.atomic import save_figure, save_text
+from pipeline.study.schemas import COMMON, GAMMA, MU, SIMULATION, STEP
 
 log = logging.getLogger("pipeline.study")
 
@@ -30,6 +32,24 @@ COLUMNS = {"case": str, "dy_wr": float, "gamma_y": float, "mu": float, "L_F2": f
            "L_W": float, "f_sound": float, "F2_pp": float, "F2_mean": float, "contact_loss": float,
            "stop_reason": str, "t_end": float, "wall_s": float, "worker": str}
 MEASURES = ("L_F2", "f_dominant", "L_W", "f_sound")
+
+
+# the study file's keys (pipeline/studies/<name>.toml with kind = "map")
+SCHEMA = COMMON | {
+    "grid": {
+        "gamma_y_first": Field(**GAMMA, doc="first lateral creepage"),
+        "gamma_y_last": Field(**GAMMA),
+        "gamma_y_step": Field(**STEP, max=0.1),
+        "mu_first": Field(**MU, doc="friction coefficients (any: their curves are built on each case's contact and cached by value)"),
+        "mu_last": Field(**MU),
+        "mu_step": Field(**STEP, max=1.0),
+    },
+    "quick": {
+        "gamma_y_step": Field(**STEP, max=0.1, doc="coarser grid of --quick (same first values)"),
+        "mu_step": Field(**STEP, max=1.0),
+    },
+    "simulation": SIMULATION,
+}
 
 
 def map_mus(study: str = "map", quick: bool = False) -> np.ndarray:
