@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+MAKE_NOISE = re.compile(r"make(\[\d+\])?: (\*\*\*|Entering|Leaving)")   # Make's own lines, not the stage's
 
 
 class RunError(RuntimeError):
@@ -45,7 +46,7 @@ def _make(goal: str, assigns: list[str], build_dir, quiet: bool) -> Path:
     if not quiet and r.stderr:
         sys.stderr.write(r.stderr)
     if r.returncode != 0:
-        lines = [ln for ln in (r.stderr or "").splitlines() if ln.strip() and not ln.startswith("make")]
+        lines = [ln for ln in (r.stderr or "").splitlines() if ln.strip() and not MAKE_NOISE.match(ln)]
         raise RunError(f"make {goal} {' '.join(assigns)}: " + (lines[-1] if lines else f"exit {r.returncode}"))
     return build
 
