@@ -80,4 +80,4 @@ def test_the_required_examples_are_run_and_show_output():
     api = [(b, o) for b, o in ex if b["lang"] == "python" and "curve_verdict(" in b["body"]]
     assert curve and api
     for b, o in curve + api:
-        assert o is not None and re.search(r"a1i\W+ at \W*\d+ Hz", o["body"]), b["body"]
+        assert o is not None and re.search(r"a1i\W+at\W+\d+ Hz", o["body"]), b["body"]
