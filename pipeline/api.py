@@ -38,16 +38,21 @@ def _target(where: str | os.PathLike) -> str:
 
 
 def _make(goal: str, assigns: list[str], build_dir, quiet: bool) -> Path:
-    """Run ``make <goal> VAR=value ... BUILD=<build_dir>`` in the repository; returns the build folder."""
+    """Run ``make <goal> VAR=value ... BUILD=<build_dir>`` in the repository, its log (stdout and stderr)
+    passed on to ``sys.stderr`` line by line unless ``quiet`` (also in a notebook, whose stderr is no
+    file); returns the build folder."""
     build = Path(build_dir).expanduser().resolve() if build_dir is not None else ROOT / "build"
     cmd = ["make", "--no-print-directory", "-C", str(ROOT), goal, *assigns, f"BUILD={build}"]
-    r = subprocess.run(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL if quiet else sys.stderr,
-                       stderr=subprocess.PIPE, text=True)
-    if not quiet and r.stderr:
-        sys.stderr.write(r.stderr)
-    if r.returncode != 0:
-        lines = [ln for ln in (r.stderr or "").splitlines() if ln.strip() and not MAKE_NOISE.match(ln)]
-        raise RunError(f"make {goal} {' '.join(assigns)}: " + (lines[-1] if lines else f"exit {r.returncode}"))
+    tail: list[str] = []
+    with subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                          text=True, bufsize=1) as p:
+        for line in p.stdout:
+            if not quiet:
+                sys.stderr.write(line)
+            if line.strip() and not MAKE_NOISE.match(line):
+                tail = (tail + [line.rstrip()])[-20:]
+    if p.returncode != 0:
+        raise RunError(f"make {goal} {' '.join(assigns)}: " + (tail[-1] if tail else f"exit {p.returncode}"))
     return build
 
 
