@@ -64,7 +64,7 @@ def _read_table(path: Path):
 
 def _paragraph(md: str, start: str) -> str:
     """The first paragraph of ``md`` that begins with ``start``, Markdown emphasis removed."""
-    for p in md.split("\n\n"):
+    for p in (p.strip() for p in md.split("\n\n")):
         if p.startswith(start):
             return re.sub(r"\*\*|`", "", p).strip()
     return ""

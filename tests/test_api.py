@@ -48,3 +48,20 @@ def test_a_missing_curve_file_is_one_line(tmp_path):
         curve_verdict(tmp_path / "nowhere.toml", quiet=True)
     msg = str(e.value)
     assert "\n" not in msg and str(tmp_path / "nowhere.toml") in msg and "no such curve file" in msg
+
+
+@pytest.mark.validation
+def test_line_study_quick_matches_its_csv():
+    # slow (a Dask cluster and three curve verdicts, 2 min 40 s on 2 shared cores): run with --validation
+    from pipeline.api import line_study
+
+    r = line_study("metro_line", quick=True, quiet=True)
+    rows = csv_rows(r.csv)
+    df = r.table
+    assert len(rows) == len(df) == 3 and list(df.columns) == list(rows[0].keys())
+    for i, row in enumerate(rows):
+        assert df.iloc[i]["id"] == row["id"] and float(df.iloc[i]["radius_m"]) == float(row["radius_m"])
+        assert int(df.iloc[i]["squeals"]) == int(row["squeals"])
+    n = sum(int(x["squeals"]) for x in rows)
+    assert (f"{n} of 3 curve conditions squeal" in r.headline) if n else r.headline.startswith("No curve squeals")
+    assert r.export.exists() and r.md.exists() and r.figures
