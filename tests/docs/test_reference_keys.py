@@ -50,3 +50,22 @@ def test_readme_is_a_front_door():
     assert len(readme.splitlines()) <= 200
     for page in ("docs/tutorial.md", "docs/reference.md", "docs/glossary.md", "docs/limitations.md", "CITATION.cff"):
         assert page in readme and (ROOT / page).exists(), page
+
+
+def test_links_of_the_user_pages_resolve():
+    """Every relative link of the README and the user's pages names a file of the repository, and every
+    #anchor into physics.md a heading of it (GitHub's slugs: lower case, punctuation dropped, spaces as -)."""
+    heads = re.findall(r"^#+ (.+)$", (ROOT / "docs" / "physics.md").read_text(encoding="utf-8"), re.M)
+    slugs = {re.sub(r"[^\w\- ]", "", h.lower()).replace(" ", "-") for h in heads}
+    n = 0
+    for page in ("README.md", "docs/tutorial.md", "docs/glossary.md", "docs/limitations.md", "docs/reference.md"):
+        for target in re.findall(r"\]\(([^)\s]+)\)", (ROOT / page).read_text(encoding="utf-8")):
+            if "://" in target:
+                continue
+            path, _, anchor = target.partition("#")
+            f = ((ROOT / page).parent / path).resolve() if path else ROOT / page
+            assert f.exists(), f"{page}: link to a missing file {target}"
+            if anchor and f.name == "physics.md":
+                assert anchor in slugs, f"{page}: no heading #{anchor} in docs/physics.md"
+            n += 1
+    assert n > 20
