@@ -145,8 +145,15 @@ def train_verdict(curve: Curve, rows: list[dict], wheel_verdict) -> dict:
     """The trailing bogie's verdicts, the pass-by and rolling noise of ``curve`` whose leading bogie's
     verdict rows are ``rows``; writes train.csv and passby.csv; returns {'columns' (COLUMNS, at 7.5 m:
     for every verdict.csv row), 'trailing' (rows), 'passby' (per receiver), 'text' (verdict.md's lines)}."""
-    points, trailing = trailing_verdicts(curve, wheel_verdict)
-    r0 = float(np.mean([p.rolling_radius for p in points]))
+    from solvers.curving import CurvingError  # lazy: brings in numba, rocket_fft, scipy
+
+    try:
+        _, trailing = trailing_verdicts(curve, wheel_verdict)
+        note = ""
+    except CurvingError as e:         # the leading bogie solved, the trailing one not: the train without it
+        trailing = []
+        note = f"  The trailing bogie has no steady curving state ({e}): left out."
+    r0 = build_problem(curve)[2].r0   # m, nominal rolling radius: the squealing wheels' centre height
     every = rows + trailing
     axles = {r["wheel"][:2] for r in every if r["squeals"]}
     share = len(axles) / 4.0
@@ -173,4 +180,4 @@ def train_verdict(curve: Curve, rows: list[dict], wheel_verdict) -> dict:
                      f"{lv['L_pAmax_rolling']:.1f}: +{lv['dL_squeal']:.1f} dB), L_pAeq over {lv['T_p_s']:.1f} s = "
                      f"{lv['L_pAeq_train']:.1f} dB(A) (rolling {lv['L_pAeq_rolling']:.1f})")
     return {"columns": columns, "trailing": trailing, "passby": levels, "text": lines[0] + " " + "; ".join(lines[1:])
-            + ".\n"}
+            + "." + note + "\n"}

@@ -79,6 +79,7 @@ def passby_levels(x, y, z, L_W, speed: float, d: float, h: float, length: float,
 def a_weighted_sum(f_hz, L_db) -> float:
     """10 lg sum 10^((L + A(f))/10): a band spectrum's A-weighted total (IEC 61672-1 A(f))."""
     f2 = np.asarray(f_hz, float) ** 2
-    ra = 12194.0 ** 2 * f2 ** 2 / ((f2 + 20.6 ** 2) * np.sqrt((f2 + 107.7 ** 2) * (f2 + 737.9 ** 2)) * (f2 + 12194.0 ** 2))
+    ra = 12194.0 ** 2 * f2 ** 2 / ((f2 + 20.6 ** 2) * np.sqrt((f2 + 107.7 ** 2) * (f2 + 737.9 ** 2))
+                                   * (f2 + 12194.0 ** 2))
     A = 20.0 * np.log10(ra) + 2.00
     return float(10.0 * np.log10(np.sum(10.0 ** ((np.asarray(L_db, float) + A) / 10.0))))
