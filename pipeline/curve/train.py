@@ -24,7 +24,8 @@ curve file's receivers, and squeal's excess over CNOSSOS-EU rolling noise.
 * dL_squeal: L_pA,max of the pass-by with squeal minus without, at 7.5 m, at the curve's friction
   (``solvers.radiation.squeal_excess`` for the expectation over a climate).
 
-Writes build/curves/<curve>/train.csv (every bogie's wheels) and passby.csv (per receiver).
+Writes build/curves/<curve>/train.csv (every bogie's wheels), passby.csv (per receiver) and rolling.csv
+(CNOSSOS-EU's sound power per 1/3 octave of one car: track, vehicle, total; per metre of train).
 """
 from __future__ import annotations
 
@@ -49,6 +50,7 @@ RECEIVER_HEIGHT = 1.2        # m above the rail head, ISO 3095:2013
 REF_DISTANCE = 7.5           # m, the verdict's L_pA receiver (listen's default)
 COLUMNS = ["axles_squeal_share", "L_pAmax_rolling", "L_pAeq_rolling", "L_pAmax_train", "L_pAeq_train", "dL_squeal"]
 TRAIN_COLUMNS = ["bogie", "wheel", "x_m", "angle_of_attack", "gamma_y", "squeals", "f_squeal", "mode", "L_F2", "L_pA"]
+ROLLING_COLUMNS = ["f_hz", "L_W_track_dB", "L_W_vehicle_dB", "L_W_car_dB", "L_W_per_m_dB"]   # re 1 pW (per metre)
 PASSBY_COLUMNS = ["receiver_m", "L_pAmax_rolling", "L_pAeq_rolling", "L_pAmax_train", "L_pAeq_train", "dL_squeal",
                   "T_p_s"]
 
@@ -166,6 +168,10 @@ def train_verdict(curve: Curve, rows: list[dict], wheel_verdict) -> dict:
     artifacts.save_csv(out / "train.csv", TRAIN_COLUMNS, (
         [cell(v) for v in ("leading" if r["wheel"][0] == "a" else "trailing", r["wheel"], axle_x(curve, r["wheel"])[0],
                            *(r[k] for k in TRAIN_COLUMNS[3:]))] for r in every))
+    _, _, comp = rolling_sources(curve)
+    per_m = -10.0 * math.log10(curve.vehicle.train.car_length_m or train_length(curve))
+    artifacts.save_csv(out / "rolling.csv", ROLLING_COLUMNS, ([cell(float(v)) for v in row] for row in zip(
+        comp["f_centre"], comp["L_W_track"], comp["L_W_vehicle"], comp["L_W_total"], comp["L_W_total"] + per_m)))
     artifacts.save_csv(out / "passby.csv", PASSBY_COLUMNS,
                        ([cell(at[d][k]) for k in PASSBY_COLUMNS] for d in receivers))
     t = curve.vehicle.train
