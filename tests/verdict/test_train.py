@@ -94,3 +94,15 @@ def test_trailing_bogie_is_the_leading_one_without_secondary_yaw():
     trail = wheel_points(solve(prof, dataclasses.replace(free, bogie_spacing=-free.bogie_spacing), trk, law), law.mu)
     for a, b in zip(lead, trail):
         assert a["angle_of_attack"] == pytest.approx(b["angle_of_attack"], abs=1e-9)
+
+
+def test_wheel_case_passby_is_the_vehicles_train():
+    """A curve wheel's case: the listen stage's pass-by is that wheel in every car of the vehicle's train
+    (before: two wheels 12.5 m apart whatever the vehicle)."""
+    from pipeline.curve.cases import case_dict
+    from tests.verdict.test_cases import POINT
+
+    pb = case_dict(read_curve("r75"), POINT)["listener"]["passby"]
+    assert pb == {"n_bogies": 6, "bogie_spacing": 23.25}
+    pb = case_dict(read_curve("y25_r300"), POINT)["listener"]["passby"]
+    assert pb == {"n_bogies": 20, "bogie_spacing": 14.0}
