@@ -19,7 +19,8 @@ from pathlib import Path
 from pipeline.store import paths
 from pipeline.config.curve_schemas import CURVE, VEHICLE
 from pipeline.config.loader import ConfigError, load, validate
-from pipeline.config.nouns import Bogie, Curve, FrictionLaw, Train, Vehicle
+from pipeline.config.nouns import Bogie, Curve, FrictionLaw, Vehicle
+from pipeline.config.train_inputs import train_of
 from pipeline.caches.friction_curves import resolve_friction
 
 
@@ -89,7 +90,7 @@ def vehicle_of(data: dict, source: Path) -> Vehicle:
                   secondary_yaw_kNm_per_rad=data["secondary"]["yaw_stiffness_kNm_per_rad"])
     load_N = 1e3 * (ld["wheel_load_kN"] if ld["wheel_load_kN"] is not None else 0.5 * ld["axle_load_kN"])
     return Vehicle(name=data["name"], description=data["description"], source=Path(source), bogie=bogie,
-                   train=Train(b["bogie_spacing_m"], b["wheelbase_m"]), wheel_load_N=load_N,
+                   train=train_of(data, source), wheel_load_N=load_N,
                    cg_height_m=ld["cg_height_m"], data=data)
 
 

@@ -9,6 +9,7 @@ heavy-haul freight, narrow enough to catch a unit mistake (N typed for kN, m for
 from __future__ import annotations
 
 from pipeline.config.loader import Field
+from pipeline.config.train_schemas import CNOSSOS_TRACK, CNOSSOS_VEHICLE, RECEIVERS, TRAIN
 
 VEHICLE = {
     "name": Field(str, doc="short name, used in build paths"),
@@ -48,6 +49,8 @@ VEHICLE = {
         "yaw_stiffness_kNm_per_rad": Field(float, unit="kN m/rad", min=0.0, max=1e5, default=0.0,
                                            doc="bogie to car body rotational stiffness (0: free to turn)"),
     },
+    "train": TRAIN,
+    "cnossos": CNOSSOS_VEHICLE,
 }
 
 FRICTION = {
@@ -74,4 +77,6 @@ CURVE = {
         "force_kN": Field(float, unit="kN", min=-100.0, max=100.0, default=0.0,
                           doc="longitudinal force per axle of the leading bogie: + traction, - braking, 0 coasting"),
     },
+    "receivers_m": RECEIVERS,
+    "cnossos": CNOSSOS_TRACK,
 }

@@ -120,18 +120,18 @@ class Bogie:
 
 @dataclass(frozen=True)
 class Train:
-    """The vehicle's axles along the track, as far as the vehicle file gives them: one car of two
-    bogies (no car length or number of cars in the file yet: ``cars`` is 1)."""
+    """The vehicle's axles along the track (vehicle file's [bogie] and [train]): ``cars`` identical
+    cars of two bogies, ``car_length_m`` apart (a bogie to the same bogie of the next car)."""
     bogie_spacing_m: float            # between the car's bogie centres
     wheelbase_m: float                # of each bogie
     cars: int = 1
+    car_length_m: float | None = None  # None: one car
 
     @property
     def axle_positions_m(self) -> tuple[float, ...]:
-        """x of the car's four axles from the leading one (m, positive backward)."""
-        s, a = self.bogie_spacing_m, self.wheelbase_m
-        return (0.0, a, s, s + a)
-
+        """x of the train's axles from the leading one (m, positive backward), car by car."""
+        s, a, L = self.bogie_spacing_m, self.wheelbase_m, self.car_length_m or 0.0
+        return tuple(k * L + x for k in range(self.cars) for x in (0.0, a, s, s + a))
 
 @dataclass(frozen=True)
 class Vehicle:

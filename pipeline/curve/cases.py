@@ -54,6 +54,8 @@ def case_dict(curve: Curve, p: WheelOperatingPoint) -> dict:
         "loading": {"preload": p.wheel_load},
         "time": {"dt": DT, "duration": DURATION},
     }
+    t = curve.vehicle.train                       # the listen stage's pass-by: this wheel in every car of the train
+    case["listener"] = {"passby": {"n_bogies": t.cars, "bogie_spacing": t.car_length_m or t.bogie_spacing_m}}
     for k, v in p.case_fields().items():
         case[k] = dict(case.get(k, {}), **v) if isinstance(v, dict) else v
     case["kinematics"].setdefault("spin", p.spin)

@@ -54,7 +54,7 @@ def test_a_curve_file_outside_the_clone(project):
         assert row["gamma_y"] == ref[w].gamma_y and row["dy_wr"] == ref[w].dy_wr
     assert prov["config"]["vehicle"]["name"] == "my_metro"
     cases = ROOT / "build" / "curves" / STEM / "cases"
-    assert sorted(p.name for p in cases.glob("*.toml")) == ["a1i.toml", "a1o.toml", "a2i.toml", "a2o.toml"]
+    assert sorted(p.name for p in cases.glob("*.toml")) == [f"{b}{a}{s}.toml" for b in "ab" for a in "12" for s in "io"]
     (ROOT / "build" / "curves" / STEM / "verdict.json").unlink()
     r = subprocess.run([sys.executable, "-m", "pipeline", "curve", "--curve", str(project / f"{STEM}.toml"),
                         "--no-what-ifs", "--no-progress"], cwd=ROOT, env=env, capture_output=True, text=True,
