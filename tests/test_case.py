@@ -46,12 +46,11 @@ def test_resolved_default_case():
 
 
 def test_resolved_once_per_process_and_again_when_a_file_changes(tmp_path, monkeypatch):
-    import pipeline.config.case_profiles as P
     from pipeline.config import case as C
 
     calls = []
-    real = P.case_contact
-    monkeypatch.setattr(P, "case_contact", lambda name: calls.append(name) or real(name))
+    real = C.case_contact
+    monkeypatch.setattr(C, "case_contact", lambda name: calls.append(name) or real(name))  # case.py's name for it
     monkeypatch.setenv("SQUEAL_CASE_DIR", str(tmp_path))
     text = (paths.ROOT / "pipeline/cases/default.toml").read_text()
     (tmp_path / "mine.toml").write_text(text)
@@ -77,14 +76,13 @@ def test_missing_and_malformed_cases_are_one_line_errors(tmp_path, monkeypatch):
 def test_every_stage_of_a_case_derives_its_contact_point_once(monkeypatch):
     """simulate's configuration (its contact's and its greens') and stability's (which also asks
     for simulate's) derived the contact point 2 and 4 times before the resolved case; now once."""
-    import pipeline.config.case_profiles as P
     from pipeline.config import case as C
     from pipeline.stages.simulate import simulate_config
 
     C.clear()
     calls = []
-    real = P.case_contact
-    monkeypatch.setattr(P, "case_contact", lambda name: calls.append(name) or real(name))
+    real = C.case_contact
+    monkeypatch.setattr(C, "case_contact", lambda name: calls.append(name) or real(name))  # case.py's name for it
     simulate_config("default")
     simulate_config("default")
     from pipeline.stages.contact import contact_inputs
@@ -192,7 +190,6 @@ def test_a_given_case_is_not_read_from_its_file(tmp_path, monkeypatch):
     """A curve's wheel built in memory (``pipeline.curve.cases.wheel_case``) is what the stages resolve while
     the curve stage hands it to them (``given``): no case file is read (there is none here), the stage's
     configuration is derived from the object; outside ``given`` the name needs its file."""
-    import pipeline.config.case_profiles as P
     from pipeline.config import case as C
     from pipeline.config.loader import ConfigError
     from pipeline.curve.cases import wheel_case
@@ -202,7 +199,7 @@ def test_a_given_case_is_not_read_from_its_file(tmp_path, monkeypatch):
     monkeypatch.setenv("SQUEAL_BUILD_DIR", str(tmp_path))
     sol = solve_curve("r150")
     rc = wheel_case(sol.curve, sol.wheels[1])
-    monkeypatch.setattr(P, "case_contact", lambda name: (_ for _ in ()).throw(AssertionError(f"read {name}")))
+    monkeypatch.setattr(C, "case_contact", lambda name: (_ for _ in ()).throw(AssertionError(f"read {name}")))
     with C.given([rc]):
         assert C.resolve_case("r150/a1i") is rc
         c, pw, pr, cfg = contact_inputs("r150/a1i")

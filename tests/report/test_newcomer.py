@@ -70,9 +70,7 @@ def test_greens_section_writes_kernel_lengths_as_samples(monkeypatch, tmp_path):
          "rail_tail_ratio": np.float64(1.3e-4)}
     monkeypatch.setattr(R.artifacts, "load_npz", lambda *x, **k: (a, {}))
     monkeypatch.setattr(R.shutil, "copy2", lambda *x: None)
-    import pipeline.stages.greens as G
-
-    monkeypatch.setattr(G, "greens_inputs", lambda case: ({},))
+    monkeypatch.setattr(R, "greens_inputs", lambda case: ({},))
     text = R.greens_section("default", tmp_path)
     assert "N_t = 2834352 samples" in text and "4096 lags" in text
     assert " s," not in text and " ms)" not in text and "(102 s" not in text
