@@ -266,7 +266,7 @@ calibrate-suspension: | $(STAMP) ## fit the C20's vertical suspension damping to
 test: | $(STAMP) ## run the test suite in random order (fast; validation tests are skipped); SEED=<n> repeats an order
 	@seed=$${SEED:-$$(od -An -N4 -tu4 /dev/urandom | tr -d ' ')}; \
 	echo "make test: the tests in random order, seed $$seed (SEED=$$seed make test repeats it)"; \
-	$(PY) -m pytest -q -p randomly --randomly-seed=$$seed tests
+	$(PY) -m pytest -q --durations=15 -p randomly --randomly-seed=$$seed tests
 
 # the writers first (pipeline/validation/writers/registry.py; each builds what it needs through Make, the
 # cached runs they share with the tests -- the limit-cycle tables, the 3D wheel -- are then up to date), then
