@@ -128,3 +128,47 @@ def test_screen_uses_the_law_at_the_working_creepage():
           f"mu_RF = {mu_curve:.5f}, law mu(s) = {mu_law:.5f}")
     assert mu_curve == pytest.approx(mu_law, rel=0.02)
     assert mu_curve < ctx.mu - 0.01                           # below the static 0.33: the law, not Coulomb
+
+
+def test_friction_modifier_what_if_in_the_verdict():
+    """r75's squealing wheel a1i (Coulomb 0.35) with the rail treated by the friction modifier (preset
+    hpf): its friction curve, built on the wheel's own contact, is the preset's law in full sliding
+    (0.35 - 0.10 (1 - s / 0.5 m/s) at s = |gamma_y| v, by hand), the time loop runs with it, and
+    verdict.md's "What would stop it" names the outcome: quiet, or its L_pA."""
+    from pipeline.config.case import given
+    from pipeline.curve.cases import wheel_case
+    from pipeline.curve.curving import solve_curve
+    from pipeline.curve.modifier import modifier_what_if, modifier_law
+    from pipeline.curve.stage import operating_row, run_stages
+    from pipeline.curve.verdict_report import verdict_markdown
+    from pipeline.curve.what_ifs import CaseModels
+    from pipeline.caches.friction_curves import with_curves
+    from solvers.timeloop.interaction import contact_model
+
+    sol = solve_curve("r75")
+    p = next(w for w in sol.wheels if w.wheel == "a1i")
+    rc = wheel_case(sol.curve, p)
+    with given([rc]):
+        run_stages(rc.name, ["contact", "greens"])      # up to date after `make curve CURVE=r75`: nothing to do
+        models = CaseModels(rc.name)
+        law = modifier_law()
+        cm = contact_model(with_curves(rc.name, models.ctx.contact, [law]), law)
+        s = abs(p.gamma_y) * models.ctx.v
+        want = 0.35 - 0.10 * max(0.0, 1.0 - s / 0.5)
+        got = float(np.interp(s, cm.s_nodes, cm.mu_nodes))
+        print(f"a1i: s = {s:.4f} m/s, hpf mu_RF = {got:.5f}, law {want:.5f}")
+        assert got == pytest.approx(want, rel=0.02)
+        row = operating_row(p) | {"squeals": True, "f_squeal": 435.297, "L_F2": 49.977, "L_W": 104.29,
+                                  "L_pA": 78.3374, "mode": "(2,0,a)", "wav": "listen_7.5m.wav"}
+        mod = modifier_what_if(models, row)
+    print(mod)
+    assert mod.run and mod.run["mu"] == pytest.approx(0.25)
+    row["modifier_what_if"] = mod
+    md = verdict_markdown(sol.curve, sol.wheels, [row], wall=1.0)
+    stop = next(ln for ln in md.splitlines() if ln.startswith("What would stop it"))
+    assert "with a friction modifier (preset hpf): " in stop
+    if mod.quiet:
+        assert "**quiet**" in stop and f"L_F2 = {mod.run['L_F2']:.1f} dB" in stop
+    else:
+        assert "still squeals" in stop
+        assert math.isnan(mod.L_pA) or f"{mod.L_pA:.1f} dB(A)" in stop
