@@ -51,3 +51,9 @@ def test_line_with_a_preset_and_a_falling_law(tmp_path):
             continue                        # `make curve CURVE=<curve>` not run here: the rows' own checks only
         v = list(csv.DictReader(open(ref)))
         assert rows[cond]["squeals"] == str(int(any(x["squeals"] == "1" for x in v)))
+        if rows[cond]["squeals"] == "1":            # the loudest wheel's numbers are the curve stage's
+            w = next(x for x in v if x["wheel"] == rows[cond]["wheel"])
+            for k in ("f_squeal", "L_F2", "L_pA"):
+                assert float(rows[cond][k]) == pytest.approx(float(w[k]), abs=1e-3), k
+    # measured (this branch): hpf quiet; the falling law squeals at a1o, 6237 Hz, L_pA 104.0 dB(A) (make curve)
+    assert rows["hpf"]["squeals"] == "0" and rows["base:exponential"]["squeals"] == "1"

@@ -72,6 +72,16 @@ def test_shipped_curves_resolve_their_law():
     sol = solve_curve(fall)
     case = case_dict(sol.curve, sol.wheels[1])
     assert case["friction"] == {"law": "exponential", "fkin": 0.14, "fexp1": 0.19, "sabsh1": 1250.0}
+    # the wheel's case file (written as a record, `make <stage> CASE=<curve>/<wheel>`) resolves to the same law
+    from pipeline.caches.friction_curves import resolve_friction
+    from pipeline.config.input_schemas import CASE
+    from pipeline.config.loader import validate
+
+    for curve in (fall, hpf):
+        sol = solve_curve(curve)
+        for p in sol.wheels:
+            c = validate(case_dict(sol.curve, p), CASE, "case")
+            assert resolve_friction(c["friction"], "case") == curve.friction
 
 
 def test_line_accepts_a_preset_and_the_base_curves_law(tmp_path):
@@ -127,6 +137,11 @@ def test_screen_uses_the_law_at_the_working_creepage():
     print(f"a1i gamma_y = {p.gamma_y:.5f}, v = {v:.3f} m/s, s = {s:.4f} m/s, gamma_sat = {gamma_sat:.5f}: "
           f"mu_RF = {mu_curve:.5f}, law mu(s) = {mu_law:.5f}")
     assert mu_curve == pytest.approx(mu_law, rel=0.02)
+    # the slope the screen linearises with (d mu_RF / ds), against the law's derivative -fexp1 ln2 / sabsh1 2^(-s/sabsh1)
+    slope_curve = float(np.interp(s, cm.s_nodes, cm.slopes))
+    slope_law = -0.19 * math.log(2.0) / 1.25 * 2.0 ** (-s / 1.25)
+    print(f"slope: curve {slope_curve:.5f} s/m, law {slope_law:.5f} s/m")
+    assert slope_curve == pytest.approx(slope_law, rel=0.1)
     assert mu_curve < ctx.mu - 0.01                           # below the static 0.33: the law, not Coulomb
 
 
