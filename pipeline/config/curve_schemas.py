@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from pipeline.config.loader import Field
 from pipeline.config.train_schemas import CNOSSOS_TRACK, CNOSSOS_VEHICLE, RECEIVERS, TRAIN
+from pipeline.caches.friction_curves import friction_schema
 
 VEHICLE = {
     "name": Field(str, doc="short name, used in build paths"),
@@ -53,10 +54,8 @@ VEHICLE = {
     "cnossos": CNOSSOS_VEHICLE,
 }
 
-FRICTION = {
-    "law": Field(str, choices=["coulomb"], default="coulomb", doc="friction law (as the case file's [friction])"),
-    "mu": Field(float, min=0.0, max=1.0, min_inclusive=False, doc="Coulomb friction coefficient"),
-}
+# the case file's [friction] table (issue 33): law (default "coulomb") with its parameters, or a preset
+FRICTION = friction_schema()
 
 CURVE = {
     "name": Field(str, doc="short name, used in build paths"),

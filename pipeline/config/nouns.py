@@ -254,7 +254,8 @@ class WheelOperatingPoint:
         contact = {"dy_wr": self.dy_wr, "rolling_circle_y": self.rolling_circle_y}
         contact.update({k: v for k, v in (("wheel_profile", self.wheel_profile), ("rail_profile", self.rail_profile))
                         if v})
-        friction = {"mu": self.mu} if self.friction_law == "coulomb" else {"law": self.friction_law, "mu": self.mu}
+        # another law: the curve's own [friction] table stands (its parameters or preset; issue 33), no mu
+        friction = {"mu": self.mu} if self.friction_law == "coulomb" else {}
         return {"wheel": self.wheel_file, "rail": self.rail_file, "contact": contact, "friction": friction,
                 "kinematics": {"gamma_y": self.gamma_y, "gamma_x": self.gamma_x, "speed": self.speed},
                 "loading": {"preload": self.normal_load}}

@@ -41,6 +41,7 @@ from pipeline.stages.radiate import run_radiate
 from pipeline.stages.simulate import run_simulate
 from solvers.stability.mitigation import growing_wheel_root
 from pipeline.curve.what_ifs import CaseModels, damping_what_if, friction_what_if
+from pipeline.curve.modifier import modifier_what_if
 from solvers.study import nearest_mode, squeals
 from pipeline.config.case import given
 from pipeline.curve import figures as plot, verdict_report as report
@@ -145,6 +146,7 @@ def wheel_verdict(curve: Curve, p: WheelOperatingPoint, *, what_ifs: bool = True
                 final[lab] = (fm, final.get(lab, (fm, z0, z))[1], z)
             row["zeta_needed"] = "; ".join(f"{lab} {z:.2g}" for lab, (fm, z0, z) in final.items())
             row["damping_what_if"] = dm
+            row["modifier_what_if"] = modifier_what_if(models, row)   # the rail treated with a friction modifier
     return row
 
 

@@ -63,6 +63,9 @@ def verdict_markdown(info: Curve, points, rows: list[dict], wall: float) -> str:
             txt = ", ".join(f"{lab} ({f:.0f} Hz) from {z0:.2g} to **{z:.2g}**" for lab, (f, z0, z) in need.items())
             ok = dm.confirm and not dm.confirm.get("squeals", True)
             stops.append(f"modal damping of {txt} ({dm.end}{'; the time loop confirms: quiet' if ok else ''})")
+        mod = loud.get("modifier_what_if")
+        if mod is not None:
+            stops.append(mod.text())
         if stops:
             verdict += "What would stop it: " + "; or ".join(stops) + ".\n\n"
     lines = ["| wheel | dy_wr (mm) | AoA (mrad) | gamma_y | gamma_x | y^W / y^R (mm) | contact angle (deg) | "

@@ -13,7 +13,7 @@ names the columns (any order, each once):
 | ``length_m`` | m | 1 .. 20000 | curve length (the chainage plot) |
 | ``speed_kmh`` | km/h | as ``speed_kmh`` | the vehicle's speed in the curve |
 | ``vehicle`` | - | a file <vehicle>.toml beside the CSV, or geometry/vehicles/<vehicle>.toml | the vehicle |
-| ``friction`` | - | ``dry``, ``wet`` (the study file's ``[friction] dry_mu``, ``wet_mu``) or a Coulomb coefficient 0 < mu <= 1 | the friction condition |
+| ``friction`` | - | ``dry``, ``wet`` (the study file's ``[friction] dry_mu``, ``wet_mu``), a Coulomb coefficient 0 < mu <= 1, a friction preset (e.g. ``hpf``) or ``base`` (the base curve's ``[friction]``, any law: ``line_friction``) | the friction condition |
 
 A row is one curve, vehicle and friction condition (the same ``id`` may appear once per vehicle and
 condition).  Every problem of every row is one line naming the file, the line, the column, the value
@@ -41,6 +41,7 @@ from pipeline.config.curve_schemas import CURVE
 from pipeline.config.nouns import Curve
 from pipeline.config.curve_inputs import curve_path, is_path, available_vehicles, curve_of, read_vehicle
 from pipeline.store.atomic import save_text
+from pipeline.study.line_friction import law_condition, allowed
 
 COLUMNS = ("id", "chainage_m", "radius_m", "cant_mm", "length_m", "speed_kmh", "vehicle", "friction")
 NUMERIC = {
@@ -57,8 +58,9 @@ ROW_SCHEMA = {
     "id": Field(str, doc="the curve's name on the line; one row per id, vehicle and friction condition"),
     **NUMERIC,
     "vehicle": Field(str, doc="<vehicle>.toml beside the CSV, else geometry/vehicles/<vehicle>.toml"),
-    "friction": Field(str, doc="'dry' or 'wet' (the study file's [friction] dry_mu, wet_mu) or a Coulomb "
-                               "coefficient 0 < mu <= 1"),
+    "friction": Field(str, doc="'dry' or 'wet' (the study file's [friction] dry_mu, wet_mu), a Coulomb "
+                               "coefficient 0 < mu <= 1, a friction preset (e.g. 'hpf') or 'base' (the base curve's "
+                               "[friction], any law)"),
 }
 
 
@@ -75,6 +77,7 @@ class LineRow:
     vehicle: str
     condition: str
     mu: float
+    table: tuple = ()      # the curve's [friction] items for a preset or 'base' (line_friction), () for Coulomb
 
     @property
     def key(self) -> str:
@@ -151,22 +154,24 @@ def read_rows(spec: dict, path: Path | None = None) -> list[LineRow]:
                                                                 "geometry/vehicles/)"))
             ok = False
         cond = r["friction"].lower()
+        law = None if cond in mus else law_condition(cond, base_curve_file(spec))   # a preset or 'base'
         if cond in mus:
             mu = mus[cond]
+        elif law is not None:
+            cond, mu, _ = law
         else:
             try:
                 mu = float(r["friction"])
             except ValueError:
                 mu = math.nan
             if not (math.isfinite(mu) and 0.0 < mu <= MU.max):
-                problems.append((f"{where}, friction", r["friction"], f"'dry', 'wet' or a Coulomb coefficient "
-                                 f"0 < mu <= {MU.max:g}"))
+                problems.append((f"{where}, friction", r["friction"], allowed()))
                 ok = False
             cond = f"mu={mu:g}"
         if not ok:
             continue
         row = LineRow(no, r["id"], vals["chainage_m"], vals["radius_m"], vals["cant_mm"], vals["length_m"],
-                      vals["speed_kmh"], r["vehicle"], cond, float(mu))
+                      vals["speed_kmh"], r["vehicle"], cond, float(mu), law[2] if law else ())
         if row.key in seen:
             problems.append((f"{where}, id", r["id"], f"one row per id, vehicle and friction (line {seen[row.key]} "
                                                       "has the same)"))
@@ -199,7 +204,7 @@ def curve_data(spec: dict, row: LineRow, name: str) -> dict:
     data.update(name=name, vehicle=row.vehicle, radius_m=row.radius_m, cant_mm=row.cant_mm, speed_kmh=row.speed_kmh,
                 description=f"line {spec['name']}, curve {row.id} at {row.chainage_m:g} m ({row.length_m:g} m long), "
                             f"{row.vehicle}, friction {row.condition}")
-    data["friction"] = {"law": "coulomb", "mu": row.mu}
+    data["friction"] = dict(row.table) if row.table else {"law": "coulomb", "mu": row.mu}
     try:
         validate(data, CURVE, f"{curves_file(spec)}: line {row.line}")
     except ConfigError as e:

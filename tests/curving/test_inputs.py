@@ -78,7 +78,13 @@ def test_unknown_key_and_missing_mu(dirs):
                                    'speed = 13.9\n[friction]\nlaw = "coulomb"\n')
     with pytest.raises(ConfigError) as e:
         inputs.read_curve(dirs / "curves" / "bad.toml")
-    assert "speed = 13.9" in str(e.value) and "friction.mu" in str(e.value)
+    assert "speed = 13.9" in str(e.value)
+    # the [friction] table is a case file's (issue 33): its law's keys are checked once the file's keys are known
+    _write(dirs / "curves", "bad", 'name = "bad"\nvehicle = "c20_metro"\nradius_m = 150\nspeed_kmh = 50\n'
+                                   '[friction]\nlaw = "coulomb"\n')
+    with pytest.raises(ConfigError) as e:
+        inputs.read_curve(dirs / "curves" / "bad.toml")
+    assert "friction.mu" in str(e.value) and "required key is missing for friction law 'coulomb'" in str(e.value)
 
 
 def test_both_loads_given_is_an_error(dirs):
