@@ -44,7 +44,10 @@ def test_curve_noun_units():
     assert (c.friction.law, c.friction.mu, c.friction.coulomb_mu) == ("coulomb", 0.35, 0.35)
     v = c.vehicle
     assert v.wheel_load_N == 65e3 and v.bogie.wheelbase_m == 2.0 and v.train.bogie_spacing_m == 10.5
-    assert v.train.axle_positions_m == (0.0, 2.0, 10.5, 12.5) and v.bogie.wheels == ("a1o", "a1i", "a2o", "a2i")
+    first_car = (0.0, 2.0, 10.5, 12.5)           # a car's 4 axles; the next car 23.25 m on (6 cars)
+    assert v.train.axle_positions_m[:4] == first_car and len(v.train.axle_positions_m) == 4 * 6
+    assert v.train.axle_positions_m[4:8] == tuple(x + 23.25 for x in first_car)
+    assert v.bogie.wheels == ("a1o", "a1i", "a2o", "a2i")
 
 
 def test_a_name_is_shipped_a_path_is_a_file(dirs):
