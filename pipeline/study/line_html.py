@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 from pathlib import Path
 
 from pipeline.curve.verdict_html import sounds
@@ -27,7 +28,7 @@ def loudest_sound_row(rows: list[dict]) -> dict | None:
 
 def page_markdown(md: str, rows: list[dict], out: Path) -> str:
     """line.md with its verdict paragraph as a block quote, the sounds and the curves' links after its figures."""
-    parts = md.split("\n\n")
+    parts = [p for p in re.split(r"\n{2,}", md) if p.strip()]
     i = next((k for k, p in enumerate(parts) if k > 0 and p.startswith("**")), None)
     if i is not None:
         parts[i] = "> " + parts[i].replace("\n", "\n> ")
