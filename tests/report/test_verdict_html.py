@@ -1,8 +1,8 @@
 """The curve's and the line study's verdict pages (issue 33) in headless chromium, as the case report's
 (tests/report/test_html.py): the headline block first, every image decodes (naturalWidth > 0), both
 WAVs (the loudest wheel's limit cycle and the pass-by) load with a duration, no console error.  And
-`make` ends with the curve's headline: its dry run's last command prints headline.txt, `make headline`
-prints it, and the headline's numbers are verdict.csv's (r75: a1i, 435 Hz, (2,0,a), 78.3 dB(A); the
+`make` ends with the curve's headline: its dry run's last command prints headline.txt (after the curve
+stage), `make headline` prints it, and the headline's numbers are verdict.csv's (r75: a1i, 435 Hz, (2,0,a), 78.3 dB(A); the
 line study's test_line.py asserts the same numbers for its R = 75 m row).  Needs the r75 verdict
 (`make curve CURVE=r75`, or `make`); skipped without it or without chromium."""
 from __future__ import annotations
@@ -87,7 +87,11 @@ def test_headline_is_the_verdict_and_make_prints_it_last():
     r = subprocess.run(["make", "--no-print-directory", "headline"], cwd=ROOT, capture_output=True, text=True,
                        timeout=120)
     assert r.returncode == 0 and r.stdout == head, r.stderr
-    # `make`'s last step (a dry run: the commands it would run, the recursive ones dry too)
-    r = subprocess.run(["make", "-n", "--no-print-directory"], cwd=ROOT, capture_output=True, text=True, timeout=300)
+    # `make`'s steps after the curve file changed (a dry run, -W: as if r75.toml were newer): the curve's
+    # verdict, then the headline last
+    r = subprocess.run(["make", "-n", "--no-print-directory", "-W", "pipeline/curves/r75.toml"], cwd=ROOT,
+                       capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr[-2000:]
-    assert r.stdout.strip().splitlines()[-1] == "cat build/curves/r75/headline.txt"
+    lines = r.stdout.strip().splitlines()
+    assert lines[-2].strip().endswith("-m pipeline curve --curve r75")
+    assert lines[-1] == "cat build/curves/r75/headline.txt && touch build/curves/r75/.headline-shown", lines
