@@ -44,7 +44,7 @@ def sounds(row: dict | None) -> list[tuple[str, Path]]:
         return []
     wav = Path(row["wav"])
     tag = wav.stem.removeprefix("listen_")
-    found = [(f"wheel {row['wheel']}'s squeal at the receiver ({tag}; its limit cycle)", wav),
+    found = [(f"the squeal of wheel {row['wheel']} at the receiver ({tag}; its limit cycle)", wav),
              (f"the pass-by ({tag})", wav.with_name(f"passby_{tag}.wav"))]
     return [(t, p) for t, p in found if p.exists()]
 
