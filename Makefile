@@ -252,11 +252,12 @@ $(BUILD)/curves/$(CURVE_NAME)/verdict.csv: $(CURVE_F) $(wildcard $(VEHICLE_F)) g
 	$(PY) -m pipeline curve --curve $(if $(CURVE_IS_PATH),$(abspath $(CURVE_F)),$(CURVE)) $(if $(NO_WHAT_IFS),--no-what-ifs)
 
 # `make`: the curve beside the case, after the wheel modes, rail and numba warm-up the case builds (never twice at once)
-# and its headline last, once the report and the verdict are done (a file, so that `make -q` stays true)
+# and its headline last, once the report and the verdict are done (a file, so that `make -q` stays true; shown
+# again when the verdict changes)
 ifeq ($(or $(MAKECMDGOALS),all),all)
 all: $(BUILD)/curves/$(CURVE_NAME)/.headline-shown
 $(BUILD)/curves/$(CURVE_NAME)/verdict.csv: | $(W)/modes.npz $(R)/rail.npz $(JIT)
-$(BUILD)/curves/$(CURVE_NAME)/.headline-shown: $(BUILD)/curves/$(CURVE_NAME)/verdict.csv $(BUILD)/report/$(CASE)/report.md
+$(BUILD)/curves/$(CURVE_NAME)/.headline-shown: $(BUILD)/curves/$(CURVE_NAME)/verdict.csv | $(BUILD)/report/$(CASE)/report.md
 	@$(PRINT_HEADLINE) && touch $@
 endif
 
