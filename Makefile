@@ -82,6 +82,15 @@ endif
 .DELETE_ON_ERROR:
 
 all: report ## run the default case as far as the stages exist (wheel, rail, contact, greens, simulate, radiate, report)
+# `make` also gives a squealing curve's verdict (CURVE, default r75) beside the case and prints its headline last
+# (which wheel, f, mode, L_pA at 7.5 m, what would stop it; the page: build/curves/<curve>/verdict.html)
+ifneq ($(filter all headline,$(or $(MAKECMDGOALS),all)),)
+  CURVE ?= r75
+endif
+PRINT_HEADLINE = cat $(BUILD)/curves/$(CURVE_NAME)/headline.txt
+.PHONY: headline
+headline: ## print the headline of CURVE's verdict (default r75, the curve `make` runs) and the page to open
+	@$(PRINT_HEADLINE)
 
 help: ## list the targets
 	@grep -hE '^[a-z][a-zA-Z_-]*:.*## ' $(MAKEFILE_LIST) | sed 's/:.*## /\t/' | awk -F'\t' '{printf "  %-10s %s\n", $$1, $$2}'
@@ -241,6 +250,16 @@ $(BUILD)/curves/$(CURVE_NAME)/verdict.csv: $(CURVE_F) $(wildcard $(VEHICLE_F)) g
 	@$(MAKE) --no-print-directory $(BUILD)/wheels/$(CURVE_WHEEL)/modes.npz $(BUILD)/rails/$(CURVE_RAIL)/rail.npz \
 	  WHEEL=$(CURVE_WHEEL) RAIL=$(CURVE_RAIL) CASE=default
 	$(PY) -m pipeline curve --curve $(if $(CURVE_IS_PATH),$(abspath $(CURVE_F)),$(CURVE)) $(if $(NO_WHAT_IFS),--no-what-ifs)
+
+# `make`: the curve beside the case, after the wheel modes, rail and numba warm-up the case builds (never twice at once)
+# and its headline last, once the report and the verdict are done (a file, so that `make -q` stays true; shown
+# again when the verdict changes)
+ifeq ($(or $(MAKECMDGOALS),all),all)
+all: $(BUILD)/curves/$(CURVE_NAME)/.headline-shown
+$(BUILD)/curves/$(CURVE_NAME)/verdict.csv: | $(W)/modes.npz $(R)/rail.npz $(JIT)
+$(BUILD)/curves/$(CURVE_NAME)/.headline-shown: $(BUILD)/curves/$(CURVE_NAME)/verdict.csv | $(BUILD)/report/$(CASE)/report.md
+	@$(PRINT_HEADLINE) && touch $@
+endif
 
 curve: ## the verdict of CURVE=<name or path to a curve file>: which wheel squeals, f, L_pA, what would stop it -> build/curves/<curve>/verdict.{csv,md}, bogie.png
 	@test -n "$(CURVE)" || { echo "make curve: name the curve, CURVE=<name> (one of: $(notdir $(basename $(wildcard pipeline/curves/*.toml)))) or CURVE=<path to a curve file>" >&2; exit 2; }

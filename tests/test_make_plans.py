@@ -60,7 +60,7 @@ def touch(path: Path) -> None:
 def build(tree: Path, goal: str, case: str) -> None:
     """Pretend ``make goal CASE=case`` ran: every artifact exists, newer than every source."""
     wheel, rail = deps.case_inputs(tree / "pipeline" / "cases" / f"{case}.toml")
-    for d in (f"wheels/{wheel}/shapes", f"rails/{rail}", f"cases/{case}", f"report/{case}"):
+    for d in (f"wheels/{wheel}/shapes", f"rails/{rail}", f"cases/{case}", f"report/{case}", "curves/r75"):  # `make`'s curve
         (tree / "build" / d).mkdir(parents=True, exist_ok=True)
     make(tree, "-t", goal, f"CASE={case}")
     now = time.time()

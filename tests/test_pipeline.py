@@ -73,6 +73,8 @@ def built(tmp_path_factory):
     build = tmp_path_factory.mktemp("build")
     r = make("all", build=build)
     assert r.returncode == 0, r.stdout + r.stderr
+    # `make` ends with the default curve's headline (issue 33): the page to open last
+    assert r.stdout.strip().splitlines()[-1] == f"Open the verdict: {build / 'curves' / 'r75' / 'verdict.html'}"
     return build
 
 
@@ -122,16 +124,16 @@ def _stages_after_touching(path, built):
 
 def test_touching_wheel_file_rebuilds_only_wheel_stages_and_dependents(built):
     assert _stages_after_touching("geometry/wheels/c20.toml", built) == [
-        "mesh", "modes", "greens", "contact", "shapes", "simulate", "radiate", "stability", "report"]
+        "mesh", "modes", "greens", "contact", "shapes", "simulate", "radiate", "stability", "report", "curve"]
 
 
 def test_touching_rail_file_rebuilds_only_rail_stages_and_dependents(built):
     assert _stages_after_touching("geometry/rails/bv50.toml", built) == [
-        "rail", "greens", "contact", "simulate", "radiate", "stability", "report"]
+        "rail", "greens", "contact", "simulate", "radiate", "stability", "report", "curve"]
 
 
 def test_touching_radiation_source_rebuilds_only_radiate_and_report(built):
-    assert _stages_after_touching("solvers/radiation/thompson_jones.py", built) == ["radiate", "report"]
+    assert _stages_after_touching("solvers/radiation/thompson_jones.py", built) == ["radiate", "report", "curve"]
 
 
 def test_make_builds_radiate_artifacts(built):

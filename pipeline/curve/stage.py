@@ -47,6 +47,7 @@ from pipeline.config.case import given
 from pipeline.curve import figures as plot, verdict_report as report
 from pipeline.curve.cases import wheel_case, write_case
 from pipeline.curve import train
+from pipeline.curve.verdict_html import write_page
 
 log = logging.getLogger("pipeline.curve")
 
@@ -171,6 +172,7 @@ def run_curve(curve, *, progress_bar: bool = True, what_ifs: bool = True) -> dic
     save_figure(plot.bogie_figure(info, points, rows), out / "bogie.png", dpi=110)
     md = report.verdict_markdown(info, points, rows, wall=time.perf_counter() - t0) + "\n" + whole["text"]
     save_text(md, out / "verdict.md")
+    page = write_page(out, info, rows, md)        # verdict.html and headline.txt (`make` prints it last)
     cfg = {"curve": info.data, "vehicle": info.vehicle.data, "cases": [rc.case for rc in cases], "what_ifs": what_ifs}
     artifacts.save_json(out / "verdict.json", "curve-verdict", cfg,
                         [{k: (None if isinstance(v, float) and not math.isfinite(v) else v)
@@ -179,7 +181,7 @@ def run_curve(curve, *, progress_bar: bool = True, what_ifs: bool = True) -> dic
     log.info("curve %s: %s -> %s", info.name, f"{loud['wheel']} squeals at {loud['f_squeal']:.0f} Hz, "
              f"L_pA = {loud['L_pA']:.1f} dB(A)" if loud else "no wheel squeals", out / "verdict.md")
     return {"rows": rows, "info": info, "paths": {"csv": out / "verdict.csv", "md": out / "verdict.md",
-                                                 "png": out / "bogie.png"}}
+                                                 "png": out / "bogie.png", "html": page}}
 
 
 def read_verdict(path) -> list[dict]:

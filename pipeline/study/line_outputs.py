@@ -15,6 +15,7 @@ from pipeline.store.artifacts import save_csv
 from postprocess.plots.line import chainage_figure, level_radius_figure
 from pipeline.store.atomic import save_figure, save_text
 from pipeline.curve.verdict_report import cell
+from pipeline.study.line_html import write_page
 
 OUT_COLUMNS = ["id", "chainage_m", "radius_m", "cant_mm", "length_m", "speed_kmh", "vehicle", "friction", "mu",
                "squeals", "wheel", "f_squeal", "mode", "L_pA", "L_W", "L_F2", "squealing_wheels", "unstable_wheels",
@@ -153,3 +154,4 @@ def write_outputs(spec: dict, src: str, out: Path, quick: bool, line_rows, done)
     md = markdown(spec, src, quick, every, len(line_rows), n_export)
     save_text(md, out / "line.md")
     save_text(md, out / "summary.md")
+    write_page(out, md, every, spec["name"])      # verdict.html: the page to open (issue 33)

@@ -124,6 +124,7 @@ def test_three_curve_line(tmp_path):
     assert md.startswith("# Line") and "**1 of 3 curve conditions squeal**" in md
     for png in ("level_radius.png", "chainage.png"):
         assert (out / png).stat().st_size > 10_000
+    assert "<audio" in (out / "verdict.html").read_text()      # the page (tests/report/test_verdict_html.py)
     # resumable: a row lost (as if the run had been killed before it finished) is the only one run again
     text = (out / "table.csv").read_text().splitlines()
     (out / "table.csv").write_text("\n".join(text[:-1]) + "\n")
