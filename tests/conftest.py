@@ -51,3 +51,16 @@ def pytest_sessionstart(session):
     # so a fresh clone runs these tests instead of skipping them
     subprocess.run(["make", "-s", "--no-print-directory", "build/rails/bv50/rail.npz",
                     "build/cases/default/contact.npz"], cwd=root, check=True)
+
+
+@pytest.fixture(scope="session")
+def r75_verdict():
+    """build/curves/r75 (the default curve `make` runs), made or found up to date through Make, so the tests
+    that read it run on a fresh clone and in any order."""
+    import subprocess
+
+    from pipeline.store import paths
+
+    subprocess.run(["make", "-s", "--no-print-directory", "curve", "CURVE=r75"], cwd=paths.ROOT, check=True,
+                   capture_output=True)
+    return paths.build() / "curves" / "r75"

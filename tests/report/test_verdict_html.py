@@ -3,8 +3,8 @@
 WAVs (the loudest wheel's limit cycle and the pass-by) load with a duration, no console error.  And
 `make` ends with the curve's headline: its dry run's last command prints headline.txt (after the curve
 stage), `make headline` prints it, and the headline's numbers are verdict.csv's (r75: a1i, 435 Hz, (2,0,a), 78.3 dB(A); the
-line study's test_line.py asserts the same numbers for its R = 75 m row).  Needs the r75 verdict
-(`make curve CURVE=r75`, or `make`); skipped without it or without chromium."""
+line study's test_line.py asserts the same numbers for its R = 75 m row).  The r75 verdict is made
+through Make first (the r75_verdict fixture); skipped without chromium."""
 from __future__ import annotations
 
 import csv
@@ -18,7 +18,6 @@ from tests.report.cdp import find_chromium, inspect_page
 
 ROOT = paths.ROOT
 R75 = paths.build() / "curves" / "r75"
-needs_r75 = pytest.mark.skipif(not (R75 / "verdict.md").exists(), reason="needs build/curves/r75 (make curve CURVE=r75)")
 needs_chromium = pytest.mark.skipif(find_chromium() is None, reason="chromium is not installed (debian-packages.txt)")
 
 
@@ -37,7 +36,7 @@ def _page_ok(page, n_images, n_audio):
     assert page["errors"] == []
 
 
-@needs_r75
+@pytest.mark.usefixtures("r75_verdict")
 @needs_chromium
 def test_curve_verdict_page(tmp_path):
     """The page rebuilt from r75's verdict (in a folder of its own: it carries its figures and sounds),
@@ -57,7 +56,7 @@ def test_curve_verdict_page(tmp_path):
         _page_ok(inspect_page(R75 / "verdict.html"), 3, 2)
 
 
-@needs_r75
+@pytest.mark.usefixtures("r75_verdict")
 @needs_chromium
 def test_line_study_page(tmp_path):
     """A line's outputs written from two rows (as test_line_cells.py), the squealing one being r75's
@@ -75,7 +74,7 @@ def test_line_study_page(tmp_path):
     _page_ok(inspect_page(tmp_path / "verdict.html"), 2, 2)
 
 
-@needs_r75
+@pytest.mark.usefixtures("r75_verdict")
 def test_headline_is_the_verdict_and_make_prints_it_last():
     rows = {r["wheel"]: r for r in csv.DictReader(open(R75 / "verdict.csv", newline=""))}
     a = rows["a1i"]
