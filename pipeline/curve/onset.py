@@ -7,7 +7,10 @@ squeal, the mode and frequency it starts at, and its level L_pA at 7.5 m against
   as its mirror image), scanned over [MU_LO, MU_HI] in MU_STEPS steps, then Brent's method.  The
   mode and frequency are the fastest growing wheel-mode pole just above it (onset + XTOL).  A wheel
   without lateral creepage (pure rolling) has nothing to drive squeal: '>MU_HI'.  Another law than
-  Coulomb: not computed (its curve at another level needs new TANG curves; a note says so).
+  Coulomb (a falling law): mu is its static level with the law's shape kept -- every coefficient
+  scaled by mu / mu_static, slip speeds and Polach's A, B kept (``pipeline.config.climate``'s rule,
+  ``COEFFICIENTS``) -- its regularized curve built by TANG through the case's curve cache
+  (``pipeline.caches.friction_curves.with_curves``).
 * Level against friction: the time loop (as the friction what-if's confirmation,
   ``CaseModels.simulate``'s settings: at most 8 s, early stop at a limit cycle) at onset + LEVEL_STEPS
   (capped at MU_HI), the radiate stage's sound power of its final forces
@@ -23,6 +26,9 @@ from typing import NamedTuple
 
 import numpy as np
 
+from pipeline.caches.friction_curves import with_curves
+from pipeline.config.climate import COEFFICIENTS
+from pipeline.config.nouns import FrictionLaw
 from pipeline.store import paths
 from pipeline.store.artifacts import save_csv
 from pipeline.stages.radiate import load_radiation_model, sound_power_of_forces
@@ -57,6 +63,25 @@ class WheelOnset(NamedTuple):
         return "" if self.onset is None else self.onset.text()
 
 
+def law_at(law: FrictionLaw, level: float) -> FrictionLaw:
+    """The law with its static coefficient moved to ``level``, its shape kept (module notes)."""
+    if law.law == "coulomb":
+        return FrictionLaw.coulomb(level)
+    k = float(level) / law.mu
+    return FrictionLaw.of(law.law, {q: v * k if q in COEFFICIENTS else v for q, v in law.params.items()})
+
+
+def contact_at(models, mu: float):
+    """The case's ContactModel at static level ``mu`` (Coulomb: ``CaseModels.contact``, exact
+    scaling; another law: ``law_at`` and its TANG curve)."""
+    from solvers.timeloop.interaction import contact_model  # lazy: brings in numba, rocket_fft, scipy
+
+    if models.coulomb:
+        return models.contact(mu)
+    f = law_at(models.friction, mu)
+    return contact_model(with_curves(models.ctx.case, models.ctx.contact, [f]), f)
+
+
 class Screen:
     """``CaseModels.roots`` at any mu with the structures' transforms (``screen.Basis``, and the
     argument principle's contour cached on it) built once: the same poles, without rebuilding the
@@ -80,7 +105,7 @@ class Screen:
     def roots(self, mu: float):
         from solvers.stability.screen import Basis, linearise, screen  # lazy: brings in numba
 
-        lm = linearise(self.wheel, self.kernel, self.models.contact(mu), **self.args)
+        lm = linearise(self.wheel, self.kernel, contact_at(self.models, mu), **self.args)
         if self.basis is None:
             self.basis = Basis(lm)
         return screen(lm, self.basis)
@@ -97,8 +122,6 @@ def wheel_onset(models, gamma_y: float, lo: float = MU_LO, hi: float = MU_HI, st
     if gamma_y == 0.0:
         return WheelOnset(Onset(math.nan, False, lo, hi, (hi - lo) / steps, 0), math.nan, "",
                           "pure rolling: no lateral creep force")
-    if not models.coulomb:
-        return WheelOnset(None, math.nan, "", f"not computed for the friction law {models.friction.name}")
     scr = Screen(models)
     on = find_onset(lambda mu: growth(scr, mu), lo, hi, steps, XTOL)
     if on.below or not math.isfinite(on.mu):
@@ -117,7 +140,7 @@ def run_time_loop(models, mu: float):
     from solvers.timeloop.interaction import StopRule, simulate  # lazy: brings in numba, rocket_fft, scipy
 
     ctx = models.ctx
-    return simulate(models.wheel(), ctx.rail_kernel, models.contact(mu),
+    return simulate(models.wheel(), ctx.rail_kernel, contact_at(models, mu),
                     **ctx.loop.simulate(spin=models.spin, duration=DURATION, stop=StopRule(window=0.25),
                                         store_every=max(1, int(round(0.01 / ctx.dt))), final=0.5))
 
