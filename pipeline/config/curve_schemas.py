@@ -53,6 +53,8 @@ VEHICLE = {
 FRICTION = {
     "law": Field(str, choices=["coulomb"], default="coulomb", doc="friction law (as the case file's [friction])"),
     "mu": Field(float, min=0.0, max=1.0, min_inclusive=False, doc="Coulomb friction coefficient"),
+    "climate": Field(str, default=None, doc="friction climate of the risk verdict: pipeline/climates/<name>.toml or a path "
+                                            "(default: 'default'; docs/friction_climate.md)"),
 }
 
 CURVE = {

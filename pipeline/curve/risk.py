@@ -23,10 +23,11 @@ mu exceeds the smallest onset of its wheels, an axle when mu exceeds the smaller
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 
-from pipeline.config.climate import load_climate
+from pipeline.config.climate import CLIMATES, climate_file, load_climate
 from pipeline.curve.onset import level_table, save_level_table, wheel_onset
 from pipeline.curve.what_ifs import CaseModels
 from solvers.stability.onset import exceedance, weighted_median
@@ -36,9 +37,13 @@ N_QUANTILES = 200
 
 
 def curve_climate(info):
-    """The Climate of a curve: its ``[friction] climate`` or the default one (module notes)."""
+    """The Climate of a curve: its ``[friction] climate`` (a name of pipeline/climates/, or a path,
+    relative to the curve file) or the default one (module notes); ConfigError naming the file."""
     name = (info.data.get("friction") or {}).get("climate") or DEFAULT_CLIMATE
-    return load_climate(name)
+    f = climate_file(name)
+    if f.parent != CLIMATES and not f.is_absolute() and getattr(info, "source", None) is not None:
+        f = Path(info.source).parent / f
+    return load_climate(f)
 
 
 def _params(climate):

@@ -155,6 +155,7 @@ def run_curve(curve, *, progress_bar: bool = True, what_ifs: bool = True) -> dic
     sol = solve(curve)
     info, points = sol.curve, sol.wheels
     cases = [wheel_case(info, p) for p in points]         # every operating point checked before any work
+    risk.curve_climate(info)                              # and the friction climate's file (issue 32)
     for rc in cases:
         write_case(rc)
     rows = []

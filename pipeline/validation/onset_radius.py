@@ -84,12 +84,12 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     logging.basicConfig(level=logging.INFO, format="%(levelname)s %(name)s: %(message)s")
     rows = []
-    for base in args.bases.split(","):
-        for R in (float(x) for x in args.radii.split(",")):
-            rows += check_curve(base, R)
     out = paths.build() / "studies" / "onset_radius" / "onset.csv"
     cell = lambda x: f"{x:.6g}" if isinstance(x, float) and math.isfinite(x) else ("" if isinstance(x, float) else x)  # noqa: E731
-    artifacts.save_csv(out, COLUMNS, ([cell(r.get(k, "")) for k in COLUMNS] for r in rows))
+    for base in args.bases.split(","):
+        for R in (float(x) for x in args.radii.split(",")):
+            rows += check_curve(base, R)           # the table so far, after every curve (a long run)
+            artifacts.save_csv(out, COLUMNS, ([cell(r.get(k, "")) for k in COLUMNS] for r in rows))
     print(markdown(rows))
     bad = [r for r in rows if r["agrees"] == "NO"]
     print(f"\n{len(rows)} wheels, {len(bad)} disagreements -> {out}")

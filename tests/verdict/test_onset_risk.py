@@ -83,3 +83,24 @@ def test_curve_shares():
     assert s["passages"] == pytest.approx(risk.p_exceed(c, 0.25))
     assert s["axles"] == pytest.approx(0.5 * (risk.p_exceed(c, 0.25) + risk.p_exceed(c, 0.3)))
     assert exceedance(0.0, [1.0], [0.1], [0.2]) == 1.0
+
+
+def test_curve_names_its_climate(tmp_path):
+    """A curve's ``[friction] climate`` (a shipped name or a path beside the curve file) is the risk's
+    climate, not a friction parameter (the wheels' cases keep the law alone); none named: 'default';
+    an unknown one: one ConfigError naming the climate file."""
+    from pipeline.config.curve_inputs import read_curve
+    from pipeline.config.loader import ConfigError
+    from pipeline.store.paths import ROOT
+
+    text = (ROOT / "pipeline" / "curves" / "r75.toml").read_text()
+    (tmp_path / "c20_metro.toml").write_text((ROOT / "geometry" / "vehicles" / "c20_metro.toml").read_text())
+    (tmp_path / "u2.toml").write_text(UNIFORM)
+    for name, want in (('"dry_only"', "dry_only"), ('"u2.toml"', "u2")):
+        (tmp_path / "c.toml").write_text(text.replace("\nmu = 0.35\n", f"\nmu = 0.35\nclimate = {name}\n"))
+        c = read_curve(tmp_path / "c.toml")
+        assert risk.curve_climate(c).name == want and c.friction.params == {"mu": 0.35}
+    assert risk.curve_climate(read_curve("r75")).name == "default"
+    (tmp_path / "c.toml").write_text(text.replace("\nmu = 0.35\n", '\nmu = 0.35\nclimate = "nowhere"\n'))
+    with pytest.raises(ConfigError, match="nowhere.toml"):
+        risk.curve_climate(read_curve(tmp_path / "c.toml"))
