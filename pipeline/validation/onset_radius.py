@@ -18,6 +18,7 @@ from __future__ import annotations
 import argparse
 import logging
 import math
+import subprocess
 
 from pipeline.config.case import given
 from pipeline.curve.cases import wheel_case
@@ -42,6 +43,10 @@ def check_curve(base: str, radius: float) -> list[dict]:
     folder = paths.build() / "studies" / "onset_radius" / "curves"
     curve = radius_curve(base, folder, radius, V, cant, name=f"{base}-R{radius:g}-V{V:g}")
     sol = solve_curve(curve)
+    # the wheel's modes and the rail's tables, built by Make when missing (as `make curve` does)
+    subprocess.run(["make", "-s", "--no-print-directory", f"build/wheels/{sol.curve.wheel}/modes.npz",
+                    f"build/rails/{sol.curve.rail}/rail.npz", f"WHEEL={sol.curve.wheel}", f"RAIL={sol.curve.rail}",
+                    "CASE=default"], cwd=paths.ROOT, check=True)
     cases = [wheel_case(sol.curve, p) for p in sol.wheels]
     rows = []
     with given(cases):
