@@ -12,7 +12,7 @@ squeal, the mode and frequency it starts at, and its level L_pA at 7.5 m against
   ``COEFFICIENTS``) -- its regularized curve built by TANG through the case's curve cache
   (``pipeline.caches.friction_curves.with_curves``).
 * Level against friction: the time loop (as the friction what-if's confirmation,
-  ``CaseModels.simulate``'s settings: at most 8 s, early stop at a limit cycle) at onset + LEVEL_STEPS
+  ``CaseModels.simulate``'s settings: at most 8 s, early stop at a limit cycle) at onset + LEVEL_STEPS (0.02, 0.05, 0.15, 0.3)
   (capped at MU_HI), the radiate stage's sound power of its final forces
   (``stages.radiate.sound_power_of_forces``) and the listen stage's transfer to the case's
   ``[listener]`` (7.5 m, 1.2 m: ``postprocess.listening.listener.transfer``, A-weighted): the same
@@ -40,7 +40,7 @@ from solvers.study import squeals
 
 MU_LO, MU_HI, MU_STEPS = 0.1, 0.8, 7      # the scanned range (step 0.1)
 XTOL = 1e-3                                # brentq's tolerance on mu
-LEVEL_STEPS = (0.05, 0.15, 0.3)           # the time loop's friction levels above onset
+LEVEL_STEPS = (0.02, 0.05, 0.15, 0.3)     # the time loop's friction levels above onset
 DURATION = 8.0                             # s of rolling at most (SPEC 6)
 
 
