@@ -122,6 +122,9 @@ def wheel_onset(models, gamma_y: float, lo: float = MU_LO, hi: float = MU_HI, st
     if gamma_y == 0.0:
         return WheelOnset(Onset(math.nan, False, lo, hi, (hi - lo) / steps, 0), math.nan, "",
                           "pure rolling: no lateral creep force")
+    if not models.coulomb:             # the scaled law's coefficients stay <= 1: the range ends there
+        top = max(v for q, v in models.friction.params.items() if q in COEFFICIENTS)
+        hi = min(hi, math.floor(1e3 * models.friction.mu / top) / 1e3)
     scr = Screen(models)
     on = find_onset(lambda mu: growth(scr, mu), lo, hi, steps, XTOL)
     if on.below or not math.isfinite(on.mu):
