@@ -246,7 +246,7 @@ ifneq ($(CURVE),)
     endif
   endif
 endif
-$(BUILD)/curves/$(CURVE_NAME)/verdict.csv: $(CURVE_F) $(wildcard $(VEHICLE_F)) geometry/wheels/$(CURVE_WHEEL).toml geometry/rails/$(CURVE_RAIL).toml $(PROFILES) $(DEPS_curve) | $(STAMP)
+$(BUILD)/curves/$(CURVE_NAME)/verdict.csv: $(CURVE_F) $(wildcard $(VEHICLE_F)) geometry/wheels/$(CURVE_WHEEL).toml geometry/rails/$(CURVE_RAIL).toml $(PROFILES) $(wildcard pipeline/climates/*.toml) $(DEPS_curve) | $(STAMP)
 	@$(MAKE) --no-print-directory $(BUILD)/wheels/$(CURVE_WHEEL)/modes.npz $(BUILD)/rails/$(CURVE_RAIL)/rail.npz \
 	  WHEEL=$(CURVE_WHEEL) RAIL=$(CURVE_RAIL) CASE=default
 	$(PY) -m pipeline curve --curve $(if $(CURVE_IS_PATH),$(abspath $(CURVE_F)),$(CURVE)) $(if $(NO_WHAT_IFS),--no-what-ifs)

@@ -114,7 +114,7 @@ def curve_of(data: dict, source: Path, name: str | None = None, vehicle: Vehicle
     source = Path(source)
     if vehicle is None:
         vehicle = read_vehicle(data["vehicle"], source.parent, asked_by=(str(source), "vehicle"))
-    friction: FrictionLaw = resolve_friction(data["friction"], str(source))
+    friction: FrictionLaw = resolve_friction({k: v for k, v in data["friction"].items() if k != "climate"}, str(source))
     return Curve(name=name or source.stem, description=data["description"], source=source, vehicle=vehicle,
                  rail=data["rail"], rail_profile=data["rail_profile"], radius_m=data["radius_m"],
                  cant_mm=data["cant_mm"], gauge_mm=data["gauge_mm"], gauge_widening_mm=data["gauge_widening_mm"],

@@ -54,8 +54,12 @@ VEHICLE = {
     "cnossos": CNOSSOS_VEHICLE,
 }
 
-# the case file's [friction] table (issue 33): law (default "coulomb") with its parameters, or a preset
-FRICTION = friction_schema()
+# the case file's [friction] table (issue 33): law (default "coulomb") with its parameters, or a preset; and the
+# friction climate of the risk verdict (issue 32)
+FRICTION = friction_schema() | {
+    "climate": Field(str, default=None, doc="friction climate of the risk verdict: pipeline/climates/<name>.toml or a path "
+                                            "(default: 'default'; docs/friction_climate.md)"),
+}
 
 CURVE = {
     "name": Field(str, doc="short name, used in build paths"),

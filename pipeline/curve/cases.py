@@ -49,7 +49,7 @@ def case_dict(curve: Curve, p: WheelOperatingPoint) -> dict:
                         f"{curve.speed_kmh:g} km/h), wheel {p.wheel}: written by the curve stage"),
         "wheel": curve.wheel, "rail": curve.rail,
         "contact": {"dy_wr": p.dy_wr, "model": "point", "normal": "table"},
-        "friction": {k: v for k, v in curve.data["friction"].items() if v is not None},
+        "friction": {k: v for k, v in curve.data["friction"].items() if v is not None and k != "climate"},
         "kinematics": {"gamma_y": p.gamma_y, "gamma_x": p.gamma_x, "spin": p.spin, "speed": curve.speed_kmh / 3.6},
         "loading": {"preload": p.wheel_load},
         "time": {"dt": DT, "duration": DURATION},

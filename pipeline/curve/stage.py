@@ -46,14 +46,14 @@ from solvers.study import nearest_mode, squeals
 from pipeline.config.case import given
 from pipeline.curve import figures as plot, verdict_report as report
 from pipeline.curve.cases import wheel_case, write_case
-from pipeline.curve import train
+from pipeline.curve import risk, train
 from pipeline.curve.verdict_html import write_page
 
 log = logging.getLogger("pipeline.curve")
 
 COLUMNS = ["wheel", "dy_wr", "angle_of_attack", "gamma_x", "gamma_y", "spin", "y_wheel", "y_rail", "contact_angle",
            "wheel_load", "contact_points", "nadal", "screen_sigma", "screen_f", "screen_mode", "squeals", "f_squeal",
-           "mode", "L_F2", "L_W", "L_pA", "mu_threshold", "zeta_needed", "wav"] + train.COLUMNS
+           "mode", "L_F2", "L_W", "L_pA", "mu_threshold", "zeta_needed", "wav"] + risk.COLUMNS + train.COLUMNS
 UNITS = {"dy_wr": "m", "angle_of_attack": "rad", "spin": "1/m", "y_wheel": "m", "y_rail": "m", "contact_angle": "rad",
          "wheel_load": "N", "screen_sigma": "1/s", "screen_f": "Hz", "f_squeal": "Hz", "L_F2": "dB re 1 N",
          "L_W": "dB re 1 pW", "L_pA": "dB(A) re 20 uPa"}
@@ -85,7 +85,7 @@ def operating_row(p: WheelOperatingPoint) -> dict:
     row = {k: getattr(p, k) for k in COLUMNS if k in OPERATING_FIELDS}
     return row | {"screen_sigma": math.nan, "screen_f": math.nan, "screen_mode": "", "squeals": False,
                   "f_squeal": math.nan, "mode": "", "L_F2": math.nan, "L_W": math.nan, "L_pA": math.nan,
-                  "mu_threshold": math.nan, "zeta_needed": "", "wav": ""} | dict.fromkeys(train.COLUMNS, math.nan)
+                  "mu_threshold": math.nan, "zeta_needed": "", "wav": ""} | risk.EMPTY | dict.fromkeys(train.COLUMNS, math.nan)
 
 
 def run_stages(name: str, stages) -> None:
@@ -158,12 +158,14 @@ def run_curve(curve, *, progress_bar: bool = True, what_ifs: bool = True) -> dic
     sol = solve(curve)
     info, points = sol.curve, sol.wheels
     cases = [wheel_case(info, p) for p in points]         # every operating point checked before any work
+    risk.curve_climate(info)                              # and the friction climate's file (issue 32)
     for rc in cases:
         write_case(rc)
     rows = []
     with given(cases):
         for p in progress(points, enabled=progress_bar, desc=f"curve {info.name}", unit="wheel"):
             rows.append(wheel_verdict(info, p, what_ifs=what_ifs))
+        risk_md = risk.add_risk(info, points, rows)          # onset, level tables, climate (issue 32)
     whole = train.train_verdict(info, rows, wheel_verdict)   # the trailing bogie, the pass-by, rolling noise
     for r in rows:
         r |= whole["columns"]
@@ -171,6 +173,7 @@ def run_curve(curve, *, progress_bar: bool = True, what_ifs: bool = True) -> dic
     artifacts.save_csv(out / "verdict.csv", COLUMNS, ([report.cell(r[k]) for k in COLUMNS] for r in rows))
     save_figure(plot.bogie_figure(info, points, rows), out / "bogie.png", dpi=110)
     md = report.verdict_markdown(info, points, rows, wall=time.perf_counter() - t0) + "\n" + whole["text"]
+    md = md.replace("| wheel |", risk_md + "| wheel |", 1)        # onset and risk before the table (issue 32)
     save_text(md, out / "verdict.md")
     page = write_page(out, info, rows, md)        # verdict.html and headline.txt (`make` prints it last)
     cfg = {"curve": info.data, "vehicle": info.vehicle.data, "cases": [rc.case for rc in cases], "what_ifs": what_ifs}
@@ -186,7 +189,7 @@ def run_curve(curve, *, progress_bar: bool = True, what_ifs: bool = True) -> dic
 
 def read_verdict(path) -> list[dict]:
     """The rows of a verdict.csv (floats, NaN for empty cells; ``squeals`` bool; ``contact_points`` int)."""
-    text = {"wheel", "screen_mode", "mode", "zeta_needed", "wav"}
+    text = {"wheel", "screen_mode", "mode", "zeta_needed", "wav", "mu_onset", "mode_onset"}
     rows = []
     with open(path, newline="", encoding="utf-8") as fh:
         for r in csv.DictReader(fh):
