@@ -137,7 +137,8 @@ EMPTY = {"mu_onset": "", "f_onset": math.nan, "mode_onset": "", "p_squeal": math
 def add_risk(info, points, rows: list[dict], levels: bool = True) -> str:
     """Onset (``pipeline.curve.onset``), level table and climate risk of every wheel of a curve whose
     contact and greens stages have run (the curve stage's rows, filled in place: ``COLUMNS``); the
-    level tables written to build/curves/<curve>/levels_<wheel>.csv.  Returns verdict.md's paragraph.
+    level tables written to build/curves/<curve>/levels_<wheel>.csv.  Returns verdict.md's paragraph and the
+    curve's expected shares of passages and axles that squeal (``curve_risk``).
     Call it inside ``pipeline.config.case.given`` of the curve's cases."""
     climate = curve_climate(info)
     onsets, mus = {}, {}
@@ -150,4 +151,5 @@ def add_risk(info, points, rows: list[dict], levels: bool = True) -> str:
             save_level_table(info.name, p.wheel, table)
         onsets[p.wheel], mus[p.wheel] = on, on.mu
         row |= {"mu_onset": on.cell(), "f_onset": on.f_hz, "mode_onset": on.mode} | wheel_risk(climate, on.mu, table)
-    return risk_markdown(climate, rows, onsets, curve_risk(climate, mus))
+    shares = curve_risk(climate, mus)
+    return risk_markdown(climate, rows, onsets, shares), shares

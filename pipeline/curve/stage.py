@@ -47,6 +47,7 @@ from pipeline.config.case import given
 from pipeline.curve import figures as plot, verdict_report as report
 from pipeline.curve.cases import wheel_case, write_case
 from pipeline.curve import risk, train
+from solvers.radiation.squeal_excess import climate_excess
 from pipeline.curve.verdict_html import write_page
 
 log = logging.getLogger("pipeline.curve")
@@ -165,8 +166,11 @@ def run_curve(curve, *, progress_bar: bool = True, what_ifs: bool = True) -> dic
     with given(cases):
         for p in progress(points, enabled=progress_bar, desc=f"curve {info.name}", unit="wheel"):
             rows.append(wheel_verdict(info, p, what_ifs=what_ifs))
-        risk_md = risk.add_risk(info, points, rows)          # onset, level tables, climate (issue 32)
+        risk_md, shares = risk.add_risk(info, points, rows)  # onset, level tables, climate (issue 32)
     whole = train.train_verdict(info, rows, wheel_verdict)   # the trailing bogie, the pass-by, rolling noise
+    loudest = max((r["L_pAmax_7m5"] for r in rows if math.isfinite(r["L_pAmax_7m5"])), default=math.nan)
+    whole["columns"]["dL_squeal"] = climate_excess(whole["columns"]["L_pAmax_rolling"], loudest, shares["passages"]
+                                                   if math.isfinite(shares["passages"]) else 0.0)
     for r in rows:
         r |= whole["columns"]
     out = paths.curve_dir(info.name)

@@ -21,8 +21,9 @@ curve file's receivers, and squeal's excess over CNOSSOS-EU rolling noise.
   shared by its 4 axles, each a point source on the track centre line 0.5 m above the rail head
   (source A; NoiseModelling's RailwayCnossos puts ROLLING at 0.5 m) with the horizontal dipole of
   (2.3.15).  Propagation: geometric spreading only (no ground, no air absorption).
-* dL_squeal: L_pA,max of the pass-by with squeal minus without, at 7.5 m, at the curve's friction
-  (``solvers.radiation.squeal_excess`` for the expectation over a climate).
+* dL_squeal: L_pA,max of the pass-by with squeal minus without, at 7.5 m, at the curve's friction (passby.csv,
+  verdict.md); verdict.csv's ``dL_squeal`` is the expectation over the friction climate (the curve stage:
+  ``solvers.radiation.squeal_excess.climate_excess``).
 
 Writes build/curves/<curve>/train.csv (every bogie's wheels), passby.csv (per receiver) and rolling.csv
 (CNOSSOS-EU's sound power per 1/3 octave of one car: track, vehicle, total; per metre of train).

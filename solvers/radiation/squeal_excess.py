@@ -31,3 +31,14 @@ def squeal_excess(levels_with_squeal, level_rolling: float, p: float = 1.0, ener
         raise ValueError(f"rolling level {level_rolling!r} dB: must be finite")
     when = (10.0 * np.log10(np.mean(10.0 ** (L / 10.0))) if energetic else float(np.mean(L))) - level_rolling
     return float(p * when)
+
+
+def climate_excess(level_rolling: float, level_squeal: float, p: float) -> float:
+    """The expected excess over the friction climate (STUVA's method that counts how often squeal occurs):
+    a share ``p`` of the passages squeal, each at the pass-by level of rolling noise and squeal together
+    (energy sum of ``level_rolling`` and ``level_squeal``, dB), the others at rolling noise alone.  NaN
+    ``level_squeal`` (no wheel squeals anywhere in the climate): 0 dB."""
+    if not np.isfinite(level_squeal):
+        return 0.0
+    both = 10.0 * np.log10(10.0 ** (level_rolling / 10.0) + 10.0 ** (level_squeal / 10.0))
+    return squeal_excess([both], level_rolling, p)

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from solvers.radiation import passby_train as pt
-from solvers.radiation.squeal_excess import squeal_excess
+from solvers.radiation.squeal_excess import climate_excess, squeal_excess
 
 D, H, V = 7.5, 1.2, 10.0
 
@@ -67,3 +67,12 @@ def test_squeal_excess():
     assert squeal_excess([], 70.0, 0.3) == 0.0
     with pytest.raises(ValueError, match="must be in"):
         squeal_excess([80.0], 70.0, 1.5)
+
+
+def test_climate_excess_closed_form():
+    """Squeal as loud as rolling noise adds 10 lg 2 = 3.01 dB when it occurs; in 30 % of the passages the
+    expectation is 0.3 x 3.01 dB; no squeal anywhere in the climate: 0 dB."""
+    assert abs(climate_excess(70.0, 70.0, 1.0) - 10 * np.log10(2.0)) < 1e-12
+    assert abs(climate_excess(70.0, 70.0, 0.3) - 0.3 * 10 * np.log10(2.0)) < 1e-12
+    assert abs(climate_excess(69.4, 90.0, 1.0) - (10 * np.log10(10 ** 6.94 + 10 ** 9.0) - 69.4)) < 1e-12
+    assert climate_excess(70.0, float("nan"), 0.5) == 0.0
