@@ -33,6 +33,7 @@ from pipeline.store import paths
 from pipeline.store.artifacts import save_csv
 from pipeline.stages.radiate import load_radiation_model, sound_power_of_forces
 from pipeline.stages.listen import listener_inputs
+from pipeline.curve.what_ifs import mirrored
 from postprocess.listening import listener as L
 from solvers.constants import SQUEAL_LEVEL_DB
 from solvers.stability.onset import Onset, find_onset
@@ -89,15 +90,7 @@ class Screen:
 
     def __init__(self, models):
         c = models.ctx
-        wheel, kernel, spin = models.wheel(), np.asarray(c.rail_kernel, float), models.spin
-        if c.gamma_y > 0:        # the mirror image y -> -y (what_ifs module notes)
-            phi = np.array(wheel.phi, float)
-            phi[:, 0] *= -1.0
-            wheel = wheel._replace(phi=phi)
-            kernel = kernel.copy()
-            kernel[:, 0, 1] *= -1.0
-            kernel[:, 1, 0] *= -1.0
-            spin = -spin
+        wheel, kernel, spin = mirrored(c.gamma_y, models.wheel(), np.asarray(c.rail_kernel, float), models.spin)
         self.models, self.wheel, self.kernel = models, wheel, kernel
         self.args = c.loop.linearise(gamma_y=-abs(c.gamma_y), spin=spin)
         self.basis = None

@@ -43,6 +43,19 @@ ZETA_MAX = 0.1           # damping bracket's upper end (as the damping study)
 ZETA_TOL = 0.05          # critical damping to 5 %
 
 
+def mirrored(gamma_y: float, wheel, kernel, spin: float):
+    """The screen's inputs for a positive lateral creepage as the mirror image y -> -y of a negative one:
+    the lateral mode shapes, the cross receptances and the spin change sign (module notes)."""
+    if gamma_y <= 0:
+        return wheel, kernel, spin
+    phi = np.array(wheel.phi, float)
+    phi[:, 0] *= -1.0
+    kernel = kernel.copy()
+    kernel[:, 0, 1] *= -1.0
+    kernel[:, 1, 0] *= -1.0
+    return wheel._replace(phi=phi), kernel, -spin
+
+
 class CaseModels:
     """One case's linearised and time-domain models at any friction coefficient and wheel damping."""
 
@@ -96,15 +109,7 @@ class CaseModels:
 
         c = self.ctx
         idx = np.arange(len(c.wheel["f"])) if modes is None else np.asarray(modes, int)
-        wheel, kernel, spin = self.wheel(zeta, idx), np.asarray(c.rail_kernel, float), self.spin
-        if c.gamma_y > 0:        # the mirror image y -> -y: cross receptances and spin change sign (module notes)
-            phi = np.array(wheel.phi, float)
-            phi[:, 0] *= -1.0
-            wheel = wheel._replace(phi=phi)
-            kernel = kernel.copy()
-            kernel[:, 0, 1] *= -1.0
-            kernel[:, 1, 0] *= -1.0
-            spin = -spin
+        wheel, kernel, spin = mirrored(c.gamma_y, self.wheel(zeta, idx), np.asarray(c.rail_kernel, float), self.spin)
         lm = linearise(wheel, kernel, self.contact(mu), **c.loop.linearise(gamma_y=-abs(c.gamma_y), spin=spin))
         return [r._replace(mode=int(idx[r.mode]) if r.mode >= 0 else -1) for r in screen(lm)]
 

@@ -15,6 +15,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from solvers.radiation.rolling_cnossos import db_sum
+
 
 def squeal_excess(levels_with_squeal, level_rolling: float, p: float = 1.0, energetic: bool = False) -> float:
     """The expected excess (dB) of the pass-by's level over rolling noise alone, over all passages
@@ -40,5 +42,4 @@ def climate_excess(level_rolling: float, level_squeal: float, p: float) -> float
     ``level_squeal`` (no wheel squeals anywhere in the climate): 0 dB."""
     if not np.isfinite(level_squeal):
         return 0.0
-    both = 10.0 * np.log10(10.0 ** (level_rolling / 10.0) + 10.0 ** (level_squeal / 10.0))
-    return squeal_excess([both], level_rolling, p)
+    return squeal_excess([db_sum(level_rolling, level_squeal)], level_rolling, p)

@@ -17,7 +17,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-DOCS = ["README.md", "docs/tutorial.md"]
+PAGES = ["README.md", "docs/tutorial.md"]
 BLOCK = re.compile(r"(?:<!--\s*test:\s*(?P<marker>.*?)\s*-->\s*\n)?```(?P<lang>\w*)\n(?P<body>.*?)\n```", re.S)
 
 
@@ -38,11 +38,11 @@ def examples(doc: str) -> list[tuple[dict, dict | None]]:
     return out
 
 
-CASES = [pytest.param(doc, b, o, id=f"{doc}:{b['line']}") for doc in DOCS for b, o in examples(doc)]
+CASES = [pytest.param(doc, b, o, id=f"{doc}:{b['line']}") for doc in PAGES for b, o in examples(doc)]
 
 
 def test_every_code_block_is_marked():
-    for doc in DOCS:
+    for doc in PAGES:
         bs = blocks(doc)
         assert bs, f"{doc}: no fenced block"
         for b in bs:

@@ -130,7 +130,7 @@ def inspect_page(path: Path, timeout: float = 60.0) -> dict:
     if exe is None:
         raise FileNotFoundError("chromium is not installed")
     port = _free_port()
-    with tempfile.TemporaryDirectory() as profile:
+    with tempfile.TemporaryDirectory(ignore_cleanup_errors=True) as profile:  # chromium's helpers may still write
         proc = subprocess.Popen([exe, "--headless=new", "--no-sandbox", "--disable-gpu", "--no-first-run",
                                  "--mute-audio", "--autoplay-policy=no-user-gesture-required",
                                  f"--remote-debugging-port={port}", f"--user-data-dir={profile}", "about:blank"],
