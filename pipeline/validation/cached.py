@@ -16,13 +16,14 @@ from pipeline.store.atomic import save_text
 from pipeline.store.code_hash import code_key
 
 
-def _plain(x):
+def plain(x):
+    """``x`` with numpy arrays and scalars turned into JSON's lists and numbers (keys into strings)."""
     if isinstance(x, dict):
-        return {str(k): _plain(v) for k, v in x.items()}
+        return {str(k): plain(v) for k, v in x.items()}
     if isinstance(x, (list, tuple)):
-        return [_plain(v) for v in x]
+        return [plain(v) for v in x]
     if isinstance(x, np.ndarray):
-        return _plain(x.tolist())
+        return plain(x.tolist())
     if isinstance(x, np.generic):
         return x.item()
     return x
@@ -40,6 +41,6 @@ def cached(name: str, compute, functions: tuple[str, ...], inputs=()):
             d = json.loads(path.read_text())
             if d.get("key") == key:
                 return d["value"]
-        value = _plain(compute())
+        value = plain(compute())
         save_text(json.dumps({"key": key, "value": value}), path)
         return value

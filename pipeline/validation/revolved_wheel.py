@@ -43,6 +43,7 @@ from solvers.wheel.axisym import HarmonicSolver
 from solvers.wheel.eigen import shift_invert
 from pipeline.store import paths
 from pipeline.store.atomic import save_text
+from pipeline.validation.cached import plain
 from pipeline.store.code_hash import code_key
 N_MAX = 3  # harmonics compared
 N_MODES = 2  # per harmonic
@@ -350,18 +351,6 @@ def run_study(sizes=SIZES_3D, verbose=True) -> Study:
     return study
 
 
-def _jsonable(x):
-    if isinstance(x, dict):
-        return {str(k): _jsonable(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple)):
-        return [_jsonable(v) for v in x]
-    if isinstance(x, np.ndarray):
-        return x.tolist()
-    if isinstance(x, np.generic):
-        return x.item()
-    return x
-
-
 def _intkeys(d: dict) -> dict:
     return {int(k): v for k, v in d.items()}
 
@@ -382,5 +371,5 @@ def study(sizes=SIZES_3D) -> Study:
                 return Study(_intkeys(s["harmonic"]), _intkeys(s["harmonic_coarse"]), s["h2d_dofs"],
                              _intkeys(s["kinds"]), s["runs"])
         st = run_study(sizes, verbose=False)
-        save_text(json.dumps({"key": key, "study": _jsonable(st.__dict__)}), path)
+        save_text(json.dumps({"key": key, "study": plain(st.__dict__)}), path)
         return st

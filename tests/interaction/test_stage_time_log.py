@@ -11,23 +11,12 @@ import time
 
 import pytest
 
-from pipeline.store import paths
+from tests.private_build import default_case_build
 
-REAL = paths.ROOT / "build"
-NEED = [REAL / "cases" / "default" / f"{s}.npz" for s in ("contact", "greens")]
 
 
 def test_simulate_log_times_the_stage_and_the_loop(tmp_path, monkeypatch, caplog):
-    if not all(p.exists() for p in NEED):
-        pytest.skip("needs the default case's contact and greens (make greens)")
-    build = tmp_path / "build"
-    (build / "cases" / "default").mkdir(parents=True)
-    for p in NEED:
-        (build / "cases" / "default" / p.name).symlink_to(p)
-    for sub in ("wheels/c20/modes.npz", "rails/bv50/rail.npz"):
-        (build / sub).parent.mkdir(parents=True, exist_ok=True)
-        (build / sub).symlink_to(REAL / sub)
-    monkeypatch.setenv("SQUEAL_BUILD_DIR", str(build))
+    default_case_build(tmp_path, monkeypatch, ("contact", "greens"), "needs the default case's contact and greens (make greens)")
     from pipeline.stages.simulate import run_simulate
 
     run_simulate("default")                    # numba's compilation (or its cache) out of the measured call

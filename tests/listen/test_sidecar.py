@@ -11,24 +11,13 @@ import json
 import numpy as np
 import pytest
 
-from pipeline.store import paths
+from tests.private_build import default_case_build
 from pipeline.validation.references import wavcheck as WC
 
-REAL = paths.ROOT / "build"
-NEED = [REAL / "cases" / "default" / f"{s}.npz" for s in ("contact", "greens", "simulate", "radiate")]
 
 
 def test_listen_and_passby_sidecars_are_flat(tmp_path, monkeypatch):
-    if not all(p.exists() for p in NEED):
-        pytest.skip("needs the default case built up to radiate (make)")
-    build = tmp_path / "build"
-    (build / "cases" / "default").mkdir(parents=True)
-    for p in NEED:
-        (build / "cases" / "default" / p.name).symlink_to(p)
-    for sub in ("wheels/c20/modes.npz", "rails/bv50/rail.npz"):
-        (build / sub).parent.mkdir(parents=True, exist_ok=True)
-        (build / sub).symlink_to(REAL / sub)
-    monkeypatch.setenv("SQUEAL_BUILD_DIR", str(build))
+    build = default_case_build(tmp_path, monkeypatch, ("contact", "greens", "simulate", "radiate"), "needs the default case built up to radiate (make)")
     from pipeline.stages.listen import run_listen
 
     a = run_listen("default")

@@ -10,6 +10,8 @@ import math
 import numpy as np
 import pytest
 
+from tests.verdict.points import operating_point
+
 
 NAN = math.nan
 # wheel, dy_wr (m), angle of attack (rad), gamma_x, gamma_y, contact points
@@ -17,24 +19,11 @@ R150 = [("a1o", +0.0153, 0.01142, -0.0087, +0.0114, 2), ("a1i", -0.0153, 0.01142
         ("a2o", +0.0067, -0.00043, -0.0022, -0.0004, 1), ("a2i", -0.0067, -0.00043, +0.0038, +0.0004, 1)]
 
 
-def _point(**kw):
-    """A WheelOperatingPoint with the given fields, the others zero (profiles none): what the figure and the
-    verdict row read."""
-    import dataclasses
-
-    from pipeline.config.nouns import WheelOperatingPoint
-
-    base = {f.name: 0.0 for f in dataclasses.fields(WheelOperatingPoint)}
-    base |= {"axle": 1, "side": "inner", "contact_points": 1, "friction_law": "coulomb", "wheel_file": "c20",
-             "rail_file": "bv50", "wheel_profile": None, "rail_profile": None, "nadal": float("nan")}
-    return WheelOperatingPoint(**(base | kw))
-
-
 def _inputs(radius=150.0, squeal="a1i"):
     from pipeline.config.curve_inputs import read_curve
 
     info = read_curve("r150", radius_m=radius, speed_kmh=50.0, cant_mm=0.0)
-    points = [_point(wheel=w, axle=int(w[1]), side="outer" if w.endswith("o") else "inner", dy_wr=dy,
+    points = [operating_point(wheel=w, axle=int(w[1]), side="outer" if w.endswith("o") else "inner", dy_wr=dy,
                      angle_of_attack=aoa, gamma_x=gx, gamma_y=gy, wheel_load=65e3, contact_points=n)
               for w, dy, aoa, gx, gy, n in R150]
     rows = [{"wheel": w, "squeals": w == squeal, "L_pA": 78.3 if w == squeal else NAN,

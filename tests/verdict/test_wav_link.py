@@ -13,6 +13,7 @@ from pathlib import Path
 import pytest
 
 from pipeline.store import paths
+from tests.verdict.points import operating_point
 
 ROOT = paths.ROOT
 REAL = ROOT / "build"
@@ -55,7 +56,7 @@ def test_squealing_row_links_the_wav_that_exists(curve_wheel, monkeypatch):
                                                                             if s not in ("contact", "greens")]))
     c = load(paths.case_file("t/a1i"), CASE)
     info = dataclasses.replace(read_curve("r150"), name="t")     # its wheel a1i is the case file t/a1i above
-    p = _point(wheel="a1i", dy_wr=c["contact"]["dy_wr"], angle_of_attack=0.02, gamma_y=c["kinematics"]["gamma_y"],
+    p = operating_point(wheel="a1i", dy_wr=c["contact"]["dy_wr"], angle_of_attack=0.02, gamma_y=c["kinematics"]["gamma_y"],
                wheel_load=c["loading"]["preload"], normal_load=c["loading"]["preload"])
     row = stage.wheel_verdict(info, p, what_ifs=False)
     assert row["squeals"] and math.isfinite(row["L_pA"])
@@ -70,14 +71,3 @@ def test_squealing_row_links_the_wav_that_exists(curve_wheel, monkeypatch):
     assert f"Listen: `{wav}`" in md
 
 
-def _point(**kw):
-    """A WheelOperatingPoint with the given fields, the others zero (profiles none): what the figure and the
-    verdict row read."""
-    import dataclasses
-
-    from pipeline.config.nouns import WheelOperatingPoint
-
-    base = {f.name: 0.0 for f in dataclasses.fields(WheelOperatingPoint)}
-    base |= {"axle": 1, "side": "inner", "contact_points": 1, "friction_law": "coulomb", "wheel_file": "c20",
-             "rail_file": "bv50", "wheel_profile": None, "rail_profile": None, "nadal": float("nan")}
-    return WheelOperatingPoint(**(base | kw))
