@@ -28,6 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from pipeline.config.climate import CLIMATES, climate_file, load_climate
+from pipeline.config.loader import ConfigError
 from pipeline.curve.onset import level_table, save_level_table, wheel_onset
 from pipeline.curve.what_ifs import CaseModels
 from solvers.stability.onset import exceedance, weighted_median
@@ -43,6 +44,11 @@ def curve_climate(info):
     f = climate_file(name)
     if f.parent != CLIMATES and not f.is_absolute() and getattr(info, "source", None) is not None:
         f = Path(info.source).parent / f
+    if not f.is_file():                  # named with the curve file and its key, not the climate's path alone
+        known = sorted(p.stem for p in CLIMATES.glob("*.toml"))
+        raise ConfigError(str(getattr(info, "source", "curve")), [
+            ("friction.climate", name, f"a climate of pipeline/climates/ ({', '.join(known)}) or a climate file's "
+                                       f"path beside the curve file ({f} does not exist)")])
     return load_climate(f)
 
 

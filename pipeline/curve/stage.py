@@ -152,14 +152,21 @@ def wheel_verdict(curve: Curve, p: WheelOperatingPoint, *, what_ifs: bool = True
     return row
 
 
+def checked_cases(info: Curve, points) -> list:
+    """Every wheel's case (``cases.wheel_case``: its operating point inside a case's range) and the friction
+    climate's file (issue 32), checked before any work: what the stage and ``make check CURVE=`` refuse."""
+    cases = [wheel_case(info, p) for p in points]
+    risk.curve_climate(info)
+    return cases
+
+
 def run_curve(curve, *, progress_bar: bool = True, what_ifs: bool = True) -> dict:
     """The verdict of ``curve`` (a Curve, a path to a curve file or a shipped name; module notes).
     Returns {'rows', 'info' (the Curve), 'paths'}."""
     t0 = time.perf_counter()
     sol = solve(curve)
     info, points = sol.curve, sol.wheels
-    cases = [wheel_case(info, p) for p in points]         # every operating point checked before any work
-    risk.curve_climate(info)                              # and the friction climate's file (issue 32)
+    cases = checked_cases(info, points)
     for rc in cases:
         write_case(rc)
     rows = []

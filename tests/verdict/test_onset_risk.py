@@ -104,3 +104,19 @@ def test_curve_names_its_climate(tmp_path):
     (tmp_path / "c.toml").write_text(text.replace("\nmu = 0.35\n", '\nmu = 0.35\nclimate = "nowhere"\n'))
     with pytest.raises(ConfigError, match="nowhere.toml"):
         risk.curve_climate(read_curve(tmp_path / "c.toml"))
+
+
+def test_make_check_refuses_an_unknown_climate_naming_the_key(tmp_path):
+    """`make check CURVE=` refuses what the curve stage would refuse before its work: an unknown climate, in one
+    line naming the curve file, the key and the value."""
+    from pipeline.config.loader import ConfigError
+    from pipeline.curve.check import check_curve
+    from pipeline.store.paths import ROOT
+
+    text = (ROOT / "pipeline" / "curves" / "r75.toml").read_text()
+    (tmp_path / "c20_metro.toml").write_text((ROOT / "geometry" / "vehicles" / "c20_metro.toml").read_text())
+    (tmp_path / "c.toml").write_text(text.replace("\nmu = 0.35\n", '\nmu = 0.35\nclimate = "nowhere"\n'))
+    with pytest.raises(ConfigError) as e:
+        check_curve(str(tmp_path / "c.toml"))
+    msg = str(e.value)
+    assert "\n" not in msg and "c.toml" in msg and "friction.climate = 'nowhere'" in msg
