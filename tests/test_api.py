@@ -18,6 +18,7 @@ def csv_rows(path: Path) -> list[dict]:
         return list(csv.DictReader(fh))
 
 
+@pytest.mark.usefixtures("r75_verdict")
 def test_curve_verdict_r75_matches_the_stage_csv():
     # r75: the cheapest shipped curve with a squealing wheel (up to date after `make curve CURVE=r75`: ~1 s)
     v = curve_verdict("r75", quiet=True)

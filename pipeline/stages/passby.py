@@ -41,8 +41,7 @@ def compute_passby(c: dict, geo, rad: dict) -> tuple[dict, np.ndarray]:
     pb = c["listener"]["passby"]
     train = P.Train(pb["n_bogies"], pb["bogie_spacing"], c["kinematics"]["speed"], pb["window"])
     f, W, share = P.components(rad["f"], rad["W"], rad["is_tone"])
-    _, pA = P.passby_signal(f, W, train, geo, FS, weighted=True, seed=SEED)
-    _, p = P.passby_signal(f, W, train, geo, FS, weighted=False, seed=SEED)
+    _, (pA, p) = P.passby_signals(f, W, train, geo, FS, (True, False), seed=SEED)
     L = P.levels(pA, FS)
     LF = P.f_weighted(pA**2, FS)
     step = int(FS // 100)

@@ -44,6 +44,12 @@ def reached_files(entries: tuple[str, ...], root=ROOT) -> tuple[str, ...]:
     return tuple(sorted(files))
 
 
+@functools.lru_cache(maxsize=None)
+def _code_text(path, mtime_ns: int, size: int) -> bytes:
+    """``code_text`` once per process while the file stays the same."""
+    return code_text(path)
+
+
 def code_key(*entries: str, ignore_docs: bool = False, root=ROOT) -> str:
     """16 hex digits of the hash of the code the functions ``entries`` ("module:function") reach."""
     files = [root / f for f in reached_files(tuple(sorted(entries)), root)]
@@ -53,7 +59,7 @@ def code_key(*entries: str, ignore_docs: bool = False, root=ROOT) -> str:
 @functools.lru_cache(maxsize=64)
 def _hash(root, files: tuple, ignore_docs: bool) -> str:
     h = hashlib.sha256()
-    for p, _, _ in files:
+    for p, *stamp in files:
         h.update(p.relative_to(root).as_posix().encode())
-        h.update(code_text(p) if ignore_docs else p.read_bytes())
+        h.update(_code_text(p, *stamp) if ignore_docs else p.read_bytes())
     return h.hexdigest()[:16]

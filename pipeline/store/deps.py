@@ -31,6 +31,7 @@ imports, so code moved between modules keeps its dependencies.
 from __future__ import annotations
 
 import ast
+import functools
 import sys
 import tomllib
 from pathlib import Path
@@ -53,13 +54,25 @@ def repo_packages(root: Path = ROOT) -> set[str]:
     return {p.parent.name for p in root.glob("*/__init__.py")}
 
 
+_PARSED: dict[Path, tuple[tuple[int, int], ast.Module]] = {}   # path -> ((mtime_ns, size), its tree), read-only
+
+
+def parse(path: Path) -> ast.Module:
+    """The syntax tree of ``path``, parsed once per process while the file stays the same (mtime and size)."""
+    st = path.stat()
+    stamp = (st.st_mtime_ns, st.st_size)
+    if path not in _PARSED or _PARSED[path][0] != stamp:
+        _PARSED[path] = (stamp, ast.parse(path.read_text(), filename=str(path)))
+    return _PARSED[path][1]
+
+
 class Module:
     """One parsed module: its top-level definitions and, once imported, its module-level names."""
 
     def __init__(self, name: str, path: Path, is_package: bool):
         self.name, self.path = name, path
         self.package = name if is_package else name.rpartition(".")[0]
-        self.tree = ast.parse(path.read_text(), filename=str(path))
+        self.tree = parse(path)
         self.defs = {n.name: n for n in self.tree.body if isinstance(n, DEFS)}
         self.ns: dict = {}  # names bound by module-level imports -> module name or (module, symbol)
         self.discovers = is_package and any(     # a package that imports its modules at run time
@@ -78,6 +91,12 @@ def _walk_outside_defs(body):
                      *(d for d in node.args.kw_defaults if d is not None)]
         else:
             todo += list(ast.iter_child_nodes(node))
+
+
+@functools.lru_cache(maxsize=None)
+def _nodes(tree: ast.AST, outside_defs: bool = False) -> tuple:
+    """Every node of ``tree`` (a parsed module's, shared through ``parse``), or those that run when its body runs."""
+    return tuple(_walk_outside_defs(tree.body) if outside_defs else ast.walk(tree))
 
 
 class Graph:
@@ -111,7 +130,7 @@ class Graph:
         mod = self.module(name)
         if mod is not None and mod.path not in self.files:
             self.files.add(mod.path)
-            nodes = list(_walk_outside_defs(mod.tree.body))
+            nodes = _nodes(mod.tree, outside_defs=True)
             mod.ns = self.bind(mod, nodes)
             self.refer(mod, {}, nodes)
             if mod.discovers:
@@ -181,7 +200,7 @@ class Graph:
             if mod is None:
                 continue
             if name in mod.defs:  # the whole body, nested functions and methods included
-                nodes = list(ast.walk(mod.defs[name]))
+                nodes = _nodes(mod.defs[name])
                 self.refer(mod, self.bind(mod, nodes), nodes)
             elif isinstance(mod.ns.get(name), tuple):  # re-exported from another module
                 self.reach(*mod.ns[name])

@@ -104,6 +104,15 @@ def passby_signal(f, W, train: Train, geo: Geometry, fs: float = 44100.0, weight
                   seed: int = 0, c0: float = C0, rho: float = RHO_AIR):
     """(t, p): the sound pressure (Pa) at the receiver over the passage window, sampled at fs;
     A-weighted when ``weighted``.  ``f``, ``W``: the components (Hz, W per source)."""
+    t, (p,) = passby_signals(f, W, train, geo, fs, (weighted,), seed, c0, rho)
+    return t, p
+
+
+def passby_signals(f, W, train: Train, geo: Geometry, fs: float = 44100.0, weightings=(True, False),
+                   seed: int = 0, c0: float = C0, rho: float = RHO_AIR):
+    """(t, [p for each of ``weightings``]): ``passby_signal`` A-weighted (True) or not (False), every
+    signal from one evaluation of the components' phases (the costly part), each the same to the bit
+    as alone."""
     f, W = np.asarray(f, float), np.asarray(W, float)
     T = train.duration
     t = np.arange(int(np.ceil(T * fs))) / fs - train.window / train.speed  # t = 0: first wheel abreast
@@ -115,7 +124,7 @@ def passby_signal(f, W, train: Train, geo: Geometry, fs: float = 44100.0, weight
         paths.append(geo.h_receiver + geo.h_source)
     base = np.sqrt(rho * c0 / (4 * np.pi))
     M = train.speed / c0
-    p = np.zeros_like(t)
+    ps = [np.zeros_like(t) for _ in weightings]
     for k in range(train.n_bogies):
         a = k * train.bogie_spacing
         for dz in paths:
@@ -126,11 +135,14 @@ def passby_signal(f, W, train: Train, geo: Geometry, fs: float = 44100.0, weight
             dop = 1.0 / (1.0 - train.speed * (a - train.speed * te) / (c0 * r))  # dt_e/dt = 1/(1 - M cos alpha)
             for c in range(f.size):
                 g = 10 ** (-alpha[c] * r / 20) * np.sqrt(2 * W[c])
-                if weighted:
-                    grid = f[c] * np.linspace(1 / (1 + 1.5 * M), 1 / (1 - 1.5 * M), 64)
-                    g = g * 10 ** (np.interp(f[c] * dop, grid, a_weighting(grid)) / 20)
-                p += amp * g * np.cos(2 * np.pi * f[c] * te + phases[k, c])
-    return t, p
+                wave = np.cos(2 * np.pi * f[c] * te + phases[k, c])
+                for p, weighted in zip(ps, weightings):
+                    gw = g
+                    if weighted:
+                        grid = f[c] * np.linspace(1 / (1 + 1.5 * M), 1 / (1 - 1.5 * M), 64)
+                        gw = g * 10 ** (np.interp(f[c] * dop, grid, a_weighting(grid)) / 20)
+                    p += amp * gw * wave
+    return t, ps
 
 
 def f_weighted(p2, fs: float, tau: float = TAU_F) -> np.ndarray:
