@@ -1,5 +1,5 @@
-"""A user's curve file outside the clone (issue 33): ``make curve CURVE=<path>`` and ``python -m pipeline curve
---curve <path>`` run it, the vehicle it names found beside it (a name geometry/vehicles/ does not have), its
+"""A user's curve file outside the clone (issue 33): ``make curve CURVE=<path>`` and the Python API
+(``pipeline.api.curve_verdict(<path>)``) run it, the vehicle it names found beside it (a name geometry/vehicles/ does not have), its
 results in build/curves/<file stem>/; the repository stays as it was (``git status``) and, from a clean tree,
 the verdict's provenance is not "-dirty".  The curve is r300 (the C20 metro at 300 m) under other names,
 so its wheels' operating points must be the shipped r300's."""
@@ -7,11 +7,13 @@ import json
 import os
 import shutil
 import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+
+from pipeline.api import curve_verdict
+from pipeline.curve.curving import solve_curve
 
 ROOT = Path(__file__).resolve().parents[2]
 STEM = "t_outside_r300"
@@ -41,7 +43,6 @@ def _verdict() -> tuple[dict, dict]:
 
 
 def test_a_curve_file_outside_the_clone(project):
-    from pipeline.curve.curving import solve_curve
 
     before = _status()
     env = dict(os.environ, OMP_NUM_THREADS="1")
@@ -56,11 +57,9 @@ def test_a_curve_file_outside_the_clone(project):
     assert prov["config"]["vehicle"]["name"] == "my_metro"
     cases = ROOT / "build" / "curves" / STEM / "cases"
     assert sorted(p.name for p in cases.glob("*.toml")) == [f"{b}{a}{s}.toml" for b in "ab" for a in "12" for s in "io"]
-    (ROOT / "build" / "curves" / STEM / "verdict.json").unlink()
-    r = subprocess.run([sys.executable, "-m", "pipeline", "curve", "--curve", str(project / f"{STEM}.toml"),
-                        "--no-what-ifs", "--no-progress"], cwd=ROOT, env=env, capture_output=True, text=True,
-                       timeout=1800)
-    assert r.returncode == 0, r.stderr[-3000:]
+    (ROOT / "build" / "curves" / STEM / "verdict.csv").unlink()   # Make's target: the API runs the stage again
+    v = curve_verdict(project / f"{STEM}.toml", what_ifs=False, quiet=True)
+    assert v.csv == ROOT / "build" / "curves" / STEM / "verdict.csv" and list(v.table.wheel) == list(rows)
     again, prov = _verdict()
     assert {w: r["squeals"] for w, r in again.items()} == {w: r["squeals"] for w, r in rows.items()}
     assert _status() == before                                       # nothing written in the repository
