@@ -108,11 +108,11 @@ def screen_wheel(name: str, gamma_y: float) -> tuple:
     return models, r, (models.ctx.label(r.mode) if r is not None else "")
 
 
-def wheel_verdict(curve: Curve, p: WheelOperatingPoint, *, what_ifs: bool = True) -> dict:
+def wheel_verdict(curve: Curve, p: WheelOperatingPoint, *, what_ifs: bool = True, passby: bool = True) -> dict:
     """One verdict.csv row: contact, greens and the screen for the wheel's case; the time loop (the
     simulate stage) for every wheel with lateral creepage, confirming or overruling the screen; for a
-    squealing wheel radiation, listening and the mitigation what-ifs.  The wheel's ResolvedCase is
-    the one handed to the stages (``pipeline.config.case.given``)."""
+    squealing wheel radiation, listening (its pass-by WAV when ``passby``) and the mitigation what-ifs.
+    The wheel's ResolvedCase is the one handed to the stages (``pipeline.config.case.given``)."""
     name = f"{curve.name}/{p.wheel}"
     row = operating_row(p)
     run_stages(name, ["contact", "greens"])
@@ -129,7 +129,8 @@ def wheel_verdict(curve: Curve, p: WheelOperatingPoint, *, what_ifs: bool = True
     row["squeals"] = squeals(L_F2)
     row |= {"L_F2": L_F2, "f_squeal": f if row["squeals"] else math.nan}
     if row["squeals"]:
-        run_stages(name, ["radiate", "listen"])
+        run_stages(name, ["radiate"])
+        run_listen(name, allow_silent=True, passby=passby)
         rad = dict(np.load(d / "radiate.npz", allow_pickle=False))
         lis = dict(np.load(d / "listen.npz", allow_pickle=False))
         w = models.ctx.wheel

@@ -71,13 +71,14 @@ def trailing_points(curve: Curve) -> list[WheelOperatingPoint]:
 
 def trailing_verdicts(curve: Curve, wheel_verdict) -> tuple[list[WheelOperatingPoint], list[dict]]:
     """(operating points, verdict rows) of the trailing bogie's wheels (``wheel_verdict(curve, point,
-    what_ifs=False)``: the curve stage's per-wheel verdict)."""
+    what_ifs=False, passby=False)``: the curve stage's per-wheel verdict; their sound enters the train's
+    pass-by, passby.csv, and the pass-by WAV is the leading bogie's loudest wheel's)."""
     points = trailing_points(curve)
     cases = [wheel_case(curve, p) for p in points]
     for c in cases:
         write_case(c)
     with given(cases):
-        return points, [wheel_verdict(curve, p, what_ifs=False) for p in points]
+        return points, [wheel_verdict(curve, p, what_ifs=False, passby=False) for p in points]
 
 
 def axle_x(curve: Curve, wheel: str) -> list[float]:

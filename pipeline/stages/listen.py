@@ -247,7 +247,9 @@ def band_rows(a: dict) -> list[list[float]]:
                                                     a["band_upper"], a["band_L_p"], a["band_L_pA"])]
 
 
-def run_listen(case: str, distance=None, height=None, allow_silent: bool = False) -> dict:
+def run_listen(case: str, distance=None, height=None, allow_silent: bool = False, passby: bool = True) -> dict:
+    """Listen to ``case`` at its receiver (or ``distance``, ``height``), and its pass-by when it is heard
+    and ``passby``."""
     arrays, wav, cal, cfg = compute_listening(case, distance, height, allow_silent)
     tag = receiver_tag(arrays["distance"], arrays["height"])
     files = listen_files(case, tag)
@@ -257,7 +259,7 @@ def run_listen(case: str, distance=None, height=None, allow_silent: bool = False
     artifacts.save_sidecar(files["json"], "listen-wav", cfg, cal)   # flat: its keys at the top level (README)
     artifacts.save_csv(files["bands"], BAND_COLUMNS, band_rows(arrays))
     artifacts.save_npz(files["npz"], "listen", cfg, **arrays)
-    if arrays["meaningful"]:
+    if arrays["meaningful"] and passby:
         from pipeline.stages.passby import run_passby  # here: Make's DEPS of the module's other entry points stay without it
 
         c, _, _, geo = listener_inputs(case, distance, height)
