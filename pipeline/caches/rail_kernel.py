@@ -35,6 +35,7 @@ from pipeline.store.code_hash import code_key
 from pipeline.caches.blas_threads import pinned
 from pipeline.config.loader import config_hash
 from pipeline.stages.rail import rail_mesh
+from solvers.rail.kernel_arrays import moving_kernel_arrays
 
 log = logging.getLogger("pipeline.greens")
 
@@ -118,34 +119,21 @@ def table_transfer(T: dict, inside: np.ndarray, w: np.ndarray):
 @pinned
 def build_kernel(pr: dict, y_r: float, v: float, dt: float, grid: dict, taper) -> dict:
     """Moving kernel g_mov (n_lags, 2, 2), the fixed-point kernel, its decay, the tail ratio and
-    the point receptance at head point y_r >= 0 (module notes); OpenBLAS on one thread
-    (``blas_threads``)."""
-    from solvers.greens.kernels import decayed, frequency_grid, green_from_receptance  # lazy: brings in numba, scipy
-    from solvers.rail.moving_kernel import moving_green_waves  # lazy: brings in numba
+    the point receptance at head point y_r >= 0 (module notes; ``solvers.rail.kernel_arrays``) from the
+    point's own wave table; OpenBLAS on one thread (``blas_threads``)."""
+    from solvers.greens.kernels import frequency_grid  # lazy: brings in numba, scipy
     from pipeline.stages.rail_io import build_rail_model  # lazy: brings in scipy
 
-    n_t, n_lags = int(grid["n_t"]), int(grid["n_lags"])
     t0 = time.perf_counter()
     msh = paths.rail_dir(pr["name"]) / "section.msh"
     model = build_rail_model(pr, str(msh), contact_y=[y_r], with_centre=False)
     t1 = time.perf_counter()
-    f = frequency_grid(dt, n_t)
+    f = frequency_grid(dt, int(grid["n_t"]))
     inside = f < grid["f_taper"]
     T = wave_table_threads(model, np.maximum(f[inside], 1.0), y_r)   # the static limit: the 1 Hz response
     t2 = time.perf_counter()
-    w = taper(f[inside])
-    a = T["a"][:, :, 0] * w[:, None, None, None]
-    g = moving_green_waves(T["k"], a, v, dt, n_lags, n_t)
-    G0 = np.zeros((len(f), 2, 2), complex)
-    G0[inside] = a.sum(axis=1)                       # G(0, f_m), tapered
-    g0 = green_from_receptance(G0, dt, n_t)          # fixed point: decay check
-    t3 = time.perf_counter()
-    check = decayed(g0)
-    if not check.ok:
-        raise RuntimeError(f"rail Green's function has not decayed by N_t/2 dt ({check.level_db:.0f} dB)")
-    tail = np.abs(g[-n_lags // 8:]).max() / np.abs(g).max()
+    arrays = moving_kernel_arrays(T["k"], T["a"][:, :, 0], v, dt, grid, taper)
     log.info("rail moving kernel at |y^R| = %.1f mm: model %.1f s, wave table (%d frequencies) %.1f s, "
-             "kernel (%d lags) %.1f s", 1e3 * y_r, t1 - t0, int(inside.sum()), t2 - t1, n_lags, t3 - t2)
-    return {"rail_kernel": g, "rail_fixed_kernel": g0[:n_lags], "rail_decay_db": np.float64(check.level_db),
-            "rail_tail_ratio": np.float64(tail), "rail_nt": np.int64(n_t),
-            "rail_point_receptance": T["a"][:, :, 0].sum(axis=1)}   # G(0, f_k) untapered, f_k < f_taper
+             "kernel (%d lags) %.1f s", 1e3 * y_r, t1 - t0, int(inside.sum()), t2 - t1, int(grid["n_lags"]),
+             time.perf_counter() - t2)
+    return arrays

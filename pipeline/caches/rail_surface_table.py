@@ -32,7 +32,7 @@ from pipeline.caches.rail_kernel import kernel_config, kernel_path
 from pipeline.config.loader import config_hash
 from geometry.rail import running_surface
 from pipeline.stages.rail import rail_mesh
-from solvers.rail.moving_static import static_kernel, static_waves
+from solvers.rail.kernel_arrays import moving_kernel_arrays
 
 log = logging.getLogger("pipeline.greens")
 
@@ -159,26 +159,6 @@ def surface_kernel(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, gr
 
 @pinned
 def kernel_from_waves(k: np.ndarray, a: np.ndarray, v: float, dt: float, grid: dict, taper) -> dict:
-    """The moving kernel, the fixed-point kernel, its decay, the tail ratio and the point receptance
-    of a wave table (k, a) on Kropp's grid below f_taper: ``rail_kernel.build_kernel``'s arrays."""
-    from solvers.greens.kernels import decayed, frequency_grid, green_from_receptance  # lazy: brings in numba, scipy
-    from solvers.rail.moving_kernel import moving_green_waves  # lazy: brings in numba
-
-    n_t, n_lags = int(grid["n_t"]), int(grid["n_lags"])
-    f = frequency_grid(dt, n_t)
-    inside = f < grid["f_taper"]
-    w = taper(f[inside])
-    at = a * w[:, None, None, None]
-    fixed = static_waves(k)   # the subtracted static near field: the same at every frequency, summed once
-    g = moving_green_waves(k[:, ~fixed], at[:, ~fixed], v, dt, n_lags, n_t, tol=KERNEL_TOL) + \
-        static_kernel(k[0, fixed], a[0, fixed], w, v, dt, n_lags, n_t)
-    G0 = np.zeros((len(f), 2, 2), complex)
-    G0[inside] = at.sum(axis=1)
-    g0 = green_from_receptance(G0, dt, n_t)
-    check = decayed(g0)
-    if not check.ok:
-        raise RuntimeError(f"rail Green's function has not decayed by N_t/2 dt ({check.level_db:.0f} dB)")
-    tail = np.abs(g[-n_lags // 8:]).max() / np.abs(g).max()
-    return {"rail_kernel": g, "rail_fixed_kernel": g0[:n_lags], "rail_decay_db": np.float64(check.level_db),
-            "rail_tail_ratio": np.float64(tail), "rail_nt": np.int64(n_t),
-            "rail_point_receptance": a.sum(axis=1)}
+    """The moving kernel's arrays (``solvers.rail.kernel_arrays``) of a point's waves in the surface table,
+    its static near-field waves summed apart."""
+    return moving_kernel_arrays(k, a, v, dt, grid, taper, static_tol=KERNEL_TOL)

@@ -27,6 +27,7 @@ from pipeline.config.loader import config_hash
 from pipeline.stages.rail import rail_mesh
 from pipeline.store.code_hash import code_key
 from pipeline.caches.rail_surface_table import table_dir
+from solvers.rail.kernel_arrays import moving_kernel_arrays
 from solvers.greens.grid import RAIL_F_MAX, RAIL_F_TAPER, RAIL_LAGS, RAIL_NT, rail_taper
 from pipeline.stages.greens import rail_greens
 
@@ -75,25 +76,8 @@ def point_table(pr: dict, rail_hash: str, y_r: float, dt: float, grid: dict) -> 
 
 @pinned
 def kernel_from_table(T: dict, v: float, dt: float, grid: dict, taper) -> dict:
-    """``rail_kernel.build_kernel``'s arrays from the point's wave table (the same calls after the table)."""
-    from solvers.greens.kernels import decayed, frequency_grid, green_from_receptance  # lazy: brings in numba, scipy
-    from solvers.rail.moving_kernel import moving_green_waves  # lazy: brings in numba
-
-    n_t, n_lags = int(grid["n_t"]), int(grid["n_lags"])
-    f = frequency_grid(dt, n_t)
-    inside = f < grid["f_taper"]
-    w = taper(f[inside])
-    a = T["a"] * w[:, None, None, None]
-    g = moving_green_waves(T["k"], a, v, dt, n_lags, n_t)
-    G0 = np.zeros((len(f), 2, 2), complex)
-    G0[inside] = a.sum(axis=1)
-    g0 = green_from_receptance(G0, dt, n_t)
-    check = decayed(g0)
-    if not check.ok:
-        raise RuntimeError(f"rail Green's function has not decayed by N_t/2 dt ({check.level_db:.0f} dB)")
-    tail = np.abs(g[-n_lags // 8:]).max() / np.abs(g).max()
-    return {"rail_kernel": g, "rail_fixed_kernel": g0[:n_lags], "rail_decay_db": np.float64(check.level_db),
-            "rail_tail_ratio": np.float64(tail), "rail_nt": np.int64(n_t), "rail_point_receptance": T["a"].sum(axis=1)}
+    """``rail_kernel.build_kernel``'s arrays from the point's wave table (``solvers.rail.kernel_arrays``)."""
+    return moving_kernel_arrays(T["k"], T["a"], v, dt, grid, taper)
 
 
 def listed_kernel(pr: dict, rail_hash: str, y_r: float, v: float, dt: float, grid: dict, taper) -> dict:
