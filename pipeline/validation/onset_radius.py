@@ -28,10 +28,10 @@ from pipeline.curve.onset import MU_HI, level_row, wheel_onset
 from pipeline.curve.screen_first import screen_context
 from pipeline.curve.what_ifs import CaseModels
 from pipeline.store import artifacts, paths
-from pipeline.study.radius import design
+from pipeline.validation.radius_design import design_of
 
 RADII = (25.0, 50.0, 75.0, 100.0, 150.0, 200.0, 300.0, 400.0, 600.0)
-BASES = ("r150", "y25_r300")
+BASES = ("r150", "y25_r300", "tram_r100")
 DELTA = 0.02
 COLUMNS = ["base", "R", "V", "cant_mm", "wheel", "mu_onset", "mode_onset", "f_onset", "mu_below", "L_F2_below",
            "mu_above", "L_F2_above", "agrees"]
@@ -39,7 +39,7 @@ COLUMNS = ["base", "R", "V", "cant_mm", "wheel", "mu_onset", "mode_onset", "f_on
 
 def check_curve(base: str, radius: float) -> list[dict]:
     """The rows (``COLUMNS``) of one curve of the study."""
-    V, cant = design(radius)
+    V, cant = design_of(base, radius)
     folder = paths.build() / "studies" / "onset_radius" / "curves"
     curve = radius_curve(base, folder, radius, V, cant, name=f"{base}-R{radius:g}-V{V:g}")
     sol = solve_curve(curve)
