@@ -1,6 +1,6 @@
 """docs/validation/96_field_statistics.md: the radius study of both vehicles against the field's statistics
 (``pipeline.validation.field_statistics``), its per-curve rows (96_field_statistics.csv, what the fast test
-tests/validation/test_field_statistics.py checks the page's numbers against) and two plots.
+tests/verdict/test_field_statistics.py checks the page's numbers against) and two plots.
 
     .venv/bin/python -m pipeline.validation.field_statistics_doc [--radii 25,50,...] [--rerun]
 """
@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import io
 import json
 import logging
 import math
@@ -37,11 +38,13 @@ def f(x, spec=".1f", none="-") -> str:
 
 
 def save_rows(rows: list[dict]) -> None:
-    lines = [",".join(CSV_KEYS)]
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(CSV_KEYS)
     for r in rows:
-        lines.append(",".join(json.dumps(r[k]).replace(",", ";") if k == "f_squeal" else
-                              (f"{r[k]:.6g}" if isinstance(r[k], float) else str(r[k])) for k in CSV_KEYS))
-    save_text("\n".join(lines) + "\n", DOCS / ROWS_CSV)
+        w.writerow([json.dumps(r[k]) if k == "f_squeal" else (f"{r[k]:.6g}" if isinstance(r[k], float) else r[k])
+                    for k in CSV_KEYS])
+    save_text(buf.getvalue(), DOCS / ROWS_CSV)
 
 
 def read_rows(path=None) -> list[dict]:
@@ -51,11 +54,16 @@ def read_rows(path=None) -> list[dict]:
         for r in csv.DictReader(fh):
             for k, v in r.items():
                 if k == "f_squeal":
-                    r[k] = json.loads(v.replace(";", ","))
+                    r[k] = json.loads(v)
                 elif k not in ("vehicle", "curve", "class", "wheel_onset", "mode_onset"):
                     r[k] = float(v)
             out.append(r)
     return out
+
+
+def fragment_text() -> str:
+    """The committed page (what the fast test checks against the committed rows)."""
+    return (DOCS / FRAGMENT).read_text(encoding="utf-8")
 
 
 def curve_table(rows: list[dict]) -> str:
@@ -255,7 +263,7 @@ are arithmetic means over the study's radii in the class; 'agrees' for an excess
 STUVA's class mean (a tolerance stated here, not tuned). Written by
 `.venv/bin/python -m pipeline.validation.field_statistics_doc` (`make validate`) in {wall:.0f} s of wall time
 ({'verdicts reused' if wall < 120 else 'curve stage runs included'}); per-curve rows in
-`docs/validation/{ROWS_CSV}`; checked by `tests/validation/test_field_statistics.py`.
+`docs/validation/{ROWS_CSV}`; checked by `tests/verdict/test_field_statistics.py`.
 
 **Onset against radius.** The dry range of the default climate is mu = {dry.lo:g}-{dry.hi:g}. The smallest onset of
 the leading bogie's wheels lies above it from R = {f(e['metro'], 'g')} m for the metro and from R =
