@@ -18,10 +18,12 @@ stage runs (wheel modes and rail tables built through Make first).  From each ve
 * dL: verdict.csv's ``dL_squeal`` = p (L_train - L_roll), the expected excess (STUVA's method with the
   frequency of squeal); dL_when = L_train - L_roll, the excess of a squealing passage (the other method);
 * the squeal frequencies: the time loop's above onset (``levels_<wheel>.csv``) at levels the climate reaches
-  (up to its highest level + 0.02, the first step above an onset);
+  (up to its highest level + 0.02, the first step above an onset) and at the lowest squealing level (the
+  level the median holds below it);
 * the friction-modifier what-if: the same onsets and level tables over the shipped ``tor_fm`` climate
   (the modifier on the dry and humid rail), dL_fm the expected excess then; ``fm_reduction``: where the
   modifier removes the squeal (p_fm = 0) a squealing passage's whole excess dL_when, else dL - dL_fm;
+* L_peak: the loudest level in the wheels' level tables (at any friction up to 0.8; mu_peak, f_peak);
 * the rules: CNOSSOS-EU and Schall 03 (``pipeline.study.line_rules``; Schall 03's tram rule, 16. BImSchV
   Anlage 2 section 5.3.2 Anmerkung 1: K = 4 dB on the rolling noise in curves r < 200 m, ``schall03_tram``).
 
@@ -112,9 +114,11 @@ def curve_row(label: str, name: str, R: float, V: float, cant: float, rows: list
     L_fm = max((median_level(fm, mus[w], tables[w]) for w in mus), key=lambda x: x if math.isfinite(x) else -1e9,
                default=math.nan)
     top = max(c.hi for c in climates[CLIMATE].conditions)      # the climate's highest friction level
-    f_sq = sorted({round(t["f"]) for w in tables for t in tables[w]
-                   if t["squeals"] and math.isfinite(t["f"]) and t["mu"] <= top + 0.02})
+    f_sq = sorted({round(t["f"]) for w in tables for t in tables[w] if t["squeals"] and math.isfinite(t["f"])
+                   and t["mu"] <= max([top + 0.02] + [u["mu"] for u in tables[w] if u["squeals"]][:1])})
     dL = float(rows[0]["dL_squeal"])
+    peak = max((t for w in tables for t in tables[w] if t["squeals"] and math.isfinite(t["L_pA"])),
+               key=lambda t: t["L_pA"], default={"L_pA": math.nan, "mu": math.nan, "f": math.nan})
     dL_fm = climate_excess(L_roll, L_fm, p_fm if math.isfinite(p_fm) else 0.0)
     return {"vehicle": label, "curve": name, "R": R, "V": V, "cant_mm": 1e3 * cant, "class": radius_class(R),
             "mu_onset": mu_on, "wheel_onset": first["wheel"], "mode_onset": first["mode_onset"] or "-",
@@ -123,6 +127,7 @@ def curve_row(label: str, name: str, R: float, V: float, cant: float, rows: list
             "L_sq": L_sq, "L_roll": L_roll, "L_train": db_sum(L_roll, L_sq) if math.isfinite(L_sq) else math.nan,
             "dL": dL, "dL_when": when if math.isfinite(L_sq) else math.nan, "f_squeal": f_sq,
             "p_fm": p_fm, "dL_fm": dL_fm, "fm_reduction": (when if p_fm == 0.0 else dL - dL_fm) if p > 0.0 else math.nan,
+            "L_peak": peak["L_pA"], "mu_peak": peak["mu"], "f_peak": peak["f"],
             "cnossos_dB": cnossos_penalty(R), "schall03_dB": schall03_penalty(R), "schall03_tram_dB": schall03_tram(R)}
 
 

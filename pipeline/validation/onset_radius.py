@@ -1,10 +1,11 @@
 """The radius study's onsets checked by the time loop (issue 32):
 
-    .venv/bin/python -m pipeline.validation.onset_radius [--bases r150,y25_r300] [--radii 25,50,...]
+    .venv/bin/python -m pipeline.validation.onset_radius [--bases r150,y25_r300,tram_r100] [--radii 25,50,...]
 
 For each base curve's vehicle (``--bases``: shipped curve names; the metro's r150, the freight wagon's
-y25_r300) at each radius (speed and cant from the radius study's design rule,
-``pipeline.study.radius.design``; curves made by ``pipeline.curve.curvefiles.radius_curve``), every wheel
+y25_r300, the tram's tram_r100) at each radius (speed and cant from the vehicle's design rule,
+``pipeline.validation.radius_design.design_of``: the radius study's, a street track's for the tram;
+curves made by ``pipeline.curve.curvefiles.radius_curve``), every wheel
 of the leading bogie: its onset (``pipeline.curve.onset.wheel_onset``: the stability screen's growth
 rate over mu 0.1-0.8, then brentq) and the time loop 0.02 above it (should squeal) and 0.02 below it
 (should be quiet); a wheel without onset in the range: the time loop at 0.78 (should be quiet).  The
