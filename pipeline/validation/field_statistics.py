@@ -17,7 +17,7 @@ stage runs (wheel modes and rail tables built through Make first).  From each ve
   rolling-noise L_pA,max (CNOSSOS-EU), L_train = L_roll (+) L_sq (energy sum) the pass-by when squealing;
 * dL: verdict.csv's ``dL_squeal`` = p (L_train - L_roll), the expected excess (STUVA's method with the
   frequency of squeal); dL_when = L_train - L_roll, the excess of a squealing passage (the other method);
-* the squeal frequencies: the time loop's above onset (``levels_<wheel>.csv``) at levels the climate reaches
+* the squeal frequencies of the wheels whose onset the climate reaches: the time loop's above onset (``levels_<wheel>.csv``) at levels the climate reaches
   (up to its highest level + 0.02, the first step above an onset) and at the lowest squealing level (the
   level the median holds below it);
 * the friction-modifier what-if: the same onsets and level tables over the shipped ``tor_fm`` climate
@@ -63,6 +63,14 @@ BAND_F = (1000.0, 2000.0)          # Hz, squeal's tonal components 'insbesondere
 FM_RANGE = (6.3, 22.8, 12.0)       # dB(A), friction modifiers: lowest, highest, mean reduction (Eadie & Santoro)
 TRAM_QUIET_ABOVE = 200.0           # m, trams do not tend to squeal above (Verheijen & van Beek 2019)
 ALL_QUIET_ABOVE = 300.0            # m, no squeal above (ASME JRC 2012)
+# the tram's onsets the time loop does not confirm 0.02 either side (``onset_radius``), with the reason
+TRAM_EXCEPTIONS = {
+    (25.0, "a2i"): "slow growth near onset: the screen's pole grows at 0.37 1/s at mu = 0.35, so 8 s of rolling "
+                   "at onset + 0.02 = 0.342 end at L_F2 = -12.7 dB, below the 10 dB criterion; the stage's level "
+                   "table squeals from onset + 0.05 (13.8 dB at 0.372, 544 Hz)",
+    (50.0, "a1i"): "onset below the scanned range ('<0.1'): the time loop squeals at 0.08 as well (32 dB), so the "
+                   "onset lies below 0.08; the check's 'below' point is not below the onset",
+}
 TOL_DB = 3.0                       # dB: a model class mean 'agrees' with STUVA's within this (stated, not fitted)
 
 
@@ -114,7 +122,7 @@ def curve_row(label: str, name: str, R: float, V: float, cant: float, rows: list
     L_fm = max((median_level(fm, mus[w], tables[w]) for w in mus), key=lambda x: x if math.isfinite(x) else -1e9,
                default=math.nan)
     top = max(c.hi for c in climates[CLIMATE].conditions)      # the climate's highest friction level
-    f_sq = sorted({round(t["f"]) for w in tables for t in tables[w] if t["squeals"] and math.isfinite(t["f"])
+    f_sq = sorted({round(t["f"]) for w in tables if mus[w] < top for t in tables[w] if t["squeals"] and math.isfinite(t["f"])
                    and t["mu"] <= max([top + 0.02] + [u["mu"] for u in tables[w] if u["squeals"]][:1])})
     dL = float(rows[0]["dL_squeal"])
     peak = max((t for w in tables for t in tables[w] if t["squeals"] and math.isfinite(t["L_pA"])),

@@ -175,12 +175,9 @@ def test_study_reproduces_the_committed_rows(rows):
             assert (math.isinf(x) and math.isinf(y)) or x == pytest.approx(y, abs=1e-3, rel=1e-4), (a["curve"], k)
 
 
-TRAM_EXCEPTIONS: dict = {}          # (R, wheel): reason -- none known
-
-
 @pytest.mark.validation
 @pytest.mark.parametrize("radius", fs.RADII)
 def test_tram_onsets_against_time_loop(radius):
     bad = [(r["wheel"], r["mu_onset"], r.get("L_F2_below"), r.get("L_F2_above"))
-           for r in check_curve("tram_r100", radius) if r["agrees"] == "NO" and (radius, r["wheel"]) not in TRAM_EXCEPTIONS]
+           for r in check_curve("tram_r100", radius) if r["agrees"] == "NO" and (radius, r["wheel"]) not in fs.TRAM_EXCEPTIONS]
     assert not bad, bad
