@@ -135,6 +135,8 @@ def curve_row(label: str, name: str, R: float, V: float, cant: float, rows: list
             "L_sq": L_sq, "L_roll": L_roll, "L_train": db_sum(L_roll, L_sq) if math.isfinite(L_sq) else math.nan,
             "dL": dL, "dL_when": when if math.isfinite(L_sq) else math.nan, "f_squeal": f_sq,
             "p_fm": p_fm, "dL_fm": dL_fm, "fm_reduction": (when if p_fm == 0.0 else dL - dL_fm) if p > 0.0 else math.nan,
+            "gx_a1i": next(float(r["gamma_x"]) for r in rows if r["wheel"] == "a1i"),
+            "gy_a1i": next(float(r["gamma_y"]) for r in rows if r["wheel"] == "a1i"),
             "L_peak": peak["L_pA"], "mu_peak": peak["mu"], "f_peak": peak["f"],
             "cnossos_dB": cnossos_penalty(R), "schall03_dB": schall03_penalty(R), "schall03_tram_dB": schall03_tram(R)}
 

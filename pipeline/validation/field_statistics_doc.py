@@ -27,7 +27,8 @@ FRAGMENT = "96_field_statistics.md"
 ROWS_CSV = "96_field_statistics.csv"
 CSV_KEYS = ["vehicle", "curve", "R", "V", "cant_mm", "class", "mu_onset", "wheel_onset", "mode_onset", "f_onset",
             "p", "L_sq", "L_roll", "L_train", "dL", "dL_when", "f_squeal", "p_fm", "dL_fm", "cnossos_dB",
-            "schall03_dB", "schall03_tram_dB", "fm_reduction", "L_peak", "mu_peak", "f_peak"]
+            "schall03_dB", "schall03_tram_dB", "fm_reduction", "L_peak", "mu_peak", "f_peak",
+            "gx_a1i", "gy_a1i"]
 LABELS = [name for name, _, _ in fs.CLASSES]
 # measured once (2026-11-29, 2 cores shared with other jobs), stated here
 METRO_CHECK = ("The metro's onsets at 25, 50, 75 ... 600 m were checked by the time loop before (docs/friction_climate.md "
@@ -257,6 +258,13 @@ def onset_check(vehicle_base: str = "tram_r100") -> str:
             + ("" if not no else "; the exceptions, with their reason: " + "; ".join(listed)))
 
 
+def creep_text(rows) -> str:
+    return "; ".join(f"{v} " + ", ".join(f"{r['R']:g} m {r['gx_a1i']:+.4f} / {r['gy_a1i']:+.4f} (curve's onset "
+                                            + ("> 0.8" if math.isinf(r["mu_onset"]) else f"{r['mu_onset']:.3f}") + ")"
+                                            for r in rows if r["vehicle"] == v and r["R"] <= 100)
+                     for v in ("metro", "tram"))
+
+
 def radii_text(rs) -> str:
     return ", ".join(f"{r['R']:g}" for r in rs) or "none"
 
@@ -325,7 +333,10 @@ STUVA's class mean (a tolerance stated here, not tuned). Written by
 
 **Onset against radius.** The dry range of the default climate is mu = {dry.lo:g}-{dry.hi:g}. The smallest onset of
 the leading bogie's wheels lies above it from R = {f(e['metro'], 'g')} m for the metro and from R =
-{f(e['tram'], 'g')} m for the tram on (NaN: never). The tram's onsets checked by the time loop
+{f(e['tram'], 'g')} m for the tram on (-: never). Below it the onset is not monotonic in radius: the inner
+leading wheel a1i's creepages (gamma_x / gamma_y) {creep_text(rows)}; where its longitudinal creepage is large
+beside the lateral one (the tightest radii, the rolling-radius difference not matching the curve) the onset
+rises, as the radius study found for the metro (docs/validation/91_verdict.md). The tram's onsets checked by the time loop
 (squeals 0.02 above, quiet 0.02 below): {onset_check()}.
 
 {METRO_CHECK}
