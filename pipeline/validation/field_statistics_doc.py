@@ -193,7 +193,9 @@ def comparison(rows: list[dict], top: float) -> tuple[str, dict]:
                 "railway (metro): 8 dB r < 300 m, 3 dB to < 500 m; tram: 4 dB r < 200 m",
                 [f"{f(x, 'g')} dB (model dL {f(dl[v].get(c), '.2f')})" for v, x in zip(V, vals)], oks,
                 "the rule penalises by radius alone; the model's excess follows the onset against the climate: "
-                + "; ".join(f"{v} p {f(p[v].get(c), '.3f')}" for v in V) + ".")
+                + "; ".join(f"{v} p {f(p[v].get(c), '.3f')}" for v in V)
+                + ("" if c not in fs.STUVA_FREQ else "; against STUVA b (" + f"{fs.STUVA_FREQ[c]:g} dB(A)): the rule "
+                   + ", ".join(f"{f(x - fs.STUVA_FREQ[c], '+.1f')} dB ({v})" for v, x in zip(V, vals))) + ".")
     head = {"p": p, "dL": dl, "when": when, "L_train": ltr, "fm": red, "f": fsq}
     return "\n".join(t), head
 
