@@ -43,6 +43,8 @@ from pipeline.store import paths
 from pipeline.study.line_rules import cnossos_penalty, schall03_penalty
 from pipeline.study.radius import curve_verdict
 from pipeline.validation.make import make_targets
+from pipeline.validation.onset_radius import COLUMNS as CHECK_COLUMNS, check_curve
+from pipeline.store.artifacts import save_csv
 from pipeline.validation.radius_design import design_of
 from solvers.radiation.rolling_cnossos import db_sum
 from solvers.radiation.squeal_excess import climate_excess
@@ -180,3 +182,19 @@ def dry_exit(rows: list[dict], vehicle: str, dry_hi: float) -> float:
         else:
             break
     return out
+
+
+def tram_onset_check(radii=RADII, reuse: bool = True) -> list[dict]:
+    """The tram's onsets of the study against the time loop (``onset_radius.check_curve``: squeal 0.02 above,
+    quiet 0.02 below), rows of ``onset_radius.COLUMNS`` as text; kept in build/studies/field_statistics/
+    tram_onsets.csv and reused (``reuse``) when it holds every radius."""
+    out = paths.build() / "studies" / "field_statistics" / "tram_onsets.csv"
+    if reuse and out.exists():
+        with open(out, newline="", encoding="utf-8") as fh:
+            rows = list(csv.DictReader(fh))
+        if {float(r["R"]) for r in rows} >= set(radii):
+            return [r for r in rows if float(r["R"]) in radii]
+    rows = [r for R in radii for r in check_curve(VEHICLES[1][1], R)]
+    cell = lambda x: f"{x:.6g}" if isinstance(x, float) and math.isfinite(x) else ("" if isinstance(x, float) else x)  # noqa: E731
+    save_csv(out, CHECK_COLUMNS, ([cell(r.get(k, "")) for k in CHECK_COLUMNS] for r in rows))
+    return [{k: str(cell(r.get(k, ""))) for k in CHECK_COLUMNS} for r in rows]
