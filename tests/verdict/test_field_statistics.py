@@ -23,6 +23,7 @@ from pipeline.config.climate import climate_file
 from pipeline.validation import field_statistics as fs
 from pipeline.validation import field_statistics_doc as doc
 from pipeline.validation.onset_radius import check_curve
+from pipeline.validation.radius_design import design_of, tram_design
 
 STUVA_B = {"25-50": 8.0, "51-100": 4.6, "101-200": 1.6}       # UBA project record, method b
 STUVA_A = {"25-50": 6.1, "51-100": 2.6, "101-200": 6.6}       # method a
@@ -181,3 +182,19 @@ def test_tram_onsets_against_time_loop(radius):
     bad = [(r["wheel"], r["mu_onset"], r.get("L_F2_below"), r.get("L_F2_above"))
            for r in check_curve("tram_r100", radius) if r["agrees"] == "NO" and (radius, r["wheel"]) not in fs.TRAM_EXCEPTIONS]
     assert not bad, bad
+
+
+def test_tram_design_rule_against_the_shipped_tram_curves():
+    """The tram's street-track rule reproduces the shipped tram curves' assumed speeds (no cant)."""
+    for name, R, V in (("tram_r25", 25.0, 15.0), ("tram_r100", 100.0, 30.0)):
+        assert tram_design(R)[0] == pytest.approx(V, abs=0.2) and tram_design(R)[1] == 0.0
+        assert design_of(name, R) == tram_design(R)
+    assert tram_design(600.0) == (60.0, 0.0)
+
+
+def test_every_time_loop_exception_has_its_reason(page):
+    m = re.search(r"(\d+) wheels at R = [^;]*, the time loop agrees at (\d+)", page)
+    assert m, "the page's time-loop sentence"
+    assert int(m.group(1)) == 4 * len(fs.RADII)
+    assert int(m.group(1)) - int(m.group(2)) == len(fs.TRAM_EXCEPTIONS)
+    assert "NOT EXPLAINED" not in page
