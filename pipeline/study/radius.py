@@ -112,12 +112,13 @@ def figure(rows: list[dict]):
 
 
 def curve_verdict(base: str, folder: Path, radius: float, speed_kmh: float | None = None, *,
-                  reuse: bool = True) -> dict:
+                  reuse: bool = True, cant_m: float | None = None) -> dict:
     """The verdict rows of the base curve's vehicle at ``radius`` (speed: given, or the design rule's;
     cant: the design rule's), from build/curves/<name>/verdict.csv when it is newer than its curve
     file (``reuse``), else by running the curve stage.  {'name', 'R', 'V', 'cant', 'rows'}."""
     V, cant = design(radius)
     V = V if speed_kmh is None else float(speed_kmh)
+    cant = cant if cant_m is None else float(cant_m)          # another vehicle's design rule (field statistics)
     curve = radius_curve(base, folder, radius, V, cant, name=f"{curve_name(base)}-R{radius:g}-V{V:g}")
     csv = paths.curve_dir(curve.name) / "verdict.csv"
     if reuse and csv.exists() and csv.stat().st_mtime > curve.source.stat().st_mtime:

@@ -1,10 +1,11 @@
 """The radius study's onsets checked by the time loop (issue 32):
 
-    .venv/bin/python -m pipeline.validation.onset_radius [--bases r150,y25_r300] [--radii 25,50,...]
+    .venv/bin/python -m pipeline.validation.onset_radius [--bases r150,y25_r300,tram_r100] [--radii 25,50,...]
 
 For each base curve's vehicle (``--bases``: shipped curve names; the metro's r150, the freight wagon's
-y25_r300) at each radius (speed and cant from the radius study's design rule,
-``pipeline.study.radius.design``; curves made by ``pipeline.curve.curvefiles.radius_curve``), every wheel
+y25_r300, the tram's tram_r100) at each radius (speed and cant from the vehicle's design rule,
+``pipeline.validation.radius_design.design_of``: the radius study's, a street track's for the tram;
+curves made by ``pipeline.curve.curvefiles.radius_curve``), every wheel
 of the leading bogie: its onset (``pipeline.curve.onset.wheel_onset``: the stability screen's growth
 rate over mu 0.1-0.8, then brentq) and the time loop 0.02 above it (should squeal) and 0.02 below it
 (should be quiet); a wheel without onset in the range: the time loop at 0.78 (should be quiet).  The
@@ -28,10 +29,10 @@ from pipeline.curve.onset import MU_HI, level_row, wheel_onset
 from pipeline.curve.screen_first import screen_context
 from pipeline.curve.what_ifs import CaseModels
 from pipeline.store import artifacts, paths
-from pipeline.study.radius import design
+from pipeline.validation.radius_design import design_of
 
 RADII = (25.0, 50.0, 75.0, 100.0, 150.0, 200.0, 300.0, 400.0, 600.0)
-BASES = ("r150", "y25_r300")
+BASES = ("r150", "y25_r300", "tram_r100")
 DELTA = 0.02
 COLUMNS = ["base", "R", "V", "cant_mm", "wheel", "mu_onset", "mode_onset", "f_onset", "mu_below", "L_F2_below",
            "mu_above", "L_F2_above", "agrees"]
@@ -39,7 +40,7 @@ COLUMNS = ["base", "R", "V", "cant_mm", "wheel", "mu_onset", "mode_onset", "f_on
 
 def check_curve(base: str, radius: float) -> list[dict]:
     """The rows (``COLUMNS``) of one curve of the study."""
-    V, cant = design(radius)
+    V, cant = design_of(base, radius)
     folder = paths.build() / "studies" / "onset_radius" / "curves"
     curve = radius_curve(base, folder, radius, V, cant, name=f"{base}-R{radius:g}-V{V:g}")
     sol = solve_curve(curve)

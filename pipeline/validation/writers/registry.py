@@ -19,6 +19,7 @@ class Writer:
 
 W = "pipeline.validation.writers."
 WRITERS = (
+    Writer("field_statistics", "pipeline.validation.field_statistics_doc", ("96_field_statistics.md",)),
     Writer("wheel_3d", W + "wheel_3d", ("22_wheel_3d.md",)),
     Writer("limit_cycle", "pipeline.validation.limit_cycle_runs", ("68_limit_cycle.md",)),
     Writer("interaction", W + "interaction", ("60_interaction.md",)),
