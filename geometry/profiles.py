@@ -1,7 +1,7 @@
 """Tabulated running-surface profiles (wheel tread, rail head): the text
 format, its validation, and the smoothed profile the contact uses.
 
-File format (``geometry/profiles/<name>.csv``; README "Profiles")::
+File format (``geometry/profiles/<name>.csv``; docs/reference.md, "Running-surface profiles")::
 
     # kind: wheel                      (wheel | rail; required)
     # source: EN 13715 S1002 ...       (required)

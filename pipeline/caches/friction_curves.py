@@ -175,7 +175,7 @@ class CurveCache:
 
 
 def curve_arrays(entries) -> dict:
-    """The contact artifact's curve keys (README) for ``entries`` (label, mu, law name, curve as
+    """The contact artifact's curve keys (docs/reference.md) for ``entries`` (label, mu, law name, curve as
     given by ``compute_curve``), padded to a common length with their last value: ``mu_values``,
     ``rf_label``, ``rf_law``, ``rf_n``, ``rf_s``, ``rf_mu``, ``rf_slope``, ``rf_gamma_sat``."""
     curves = [e[3] for e in entries]

@@ -12,7 +12,7 @@ curve mu_RF(s) of the case's friction at the static preload (``pipeline.caches.f
 per law and value and cached by value, so that a study or another stage adds the curves of
 other values to the same contact at one curve each).
 
-Artifact: build/cases/<case>/contact.npz (keys in the README) and
+Artifact: build/cases/<case>/contact.npz (keys in docs/reference.md) and
 contact_rf.png.
 """
 from __future__ import annotations

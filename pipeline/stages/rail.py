@@ -1,7 +1,7 @@
 """Rail stage: BV50 (or another rail) cross-section with the pad, waveguide FE,
 dispersion, receptances at the rail-head contact points (SPEC 3.2).
 
-Artifacts in build/rails/<name>/ (keys in the README):
+Artifacts in build/rails/<name>/ (keys in docs/reference.md):
   section.msh     half cross-section (rail steel = surface 1, pad = 2)
   rail.npz        receptances G (points, distances, frequencies, 2, 2), the
                   wave table (exact G at any distance), decay rates,

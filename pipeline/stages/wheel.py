@@ -1,7 +1,7 @@
 """Wheel stages: mesh (Gmsh section), modes (dolfinx + SLEPc per harmonic,
 classified, plus the rigid half wheelset), shapes (pyvista renders).
 
-Artifacts in build/wheels/<name>/ (see README, 'Artifacts'):
+Artifacts in build/wheels/<name>/ (docs/reference.md, 'Artifacts'):
   section.msh   the cross-section mesh with physical curve names
   mesh.json     provenance + physical names + element counts
   modes.npz     modal artifact (keys in ``save_modes``)

@@ -239,7 +239,7 @@ def save_json(path: str | os.PathLike, kind: str, config: Mapping, payload: Any)
 
 def save_sidecar(path: str | os.PathLike, kind: str, config: Mapping, fields: Mapping[str, Any]) -> dict:
     """Atomically write a sidecar JSON for readers outside the pipeline (a WAV's calibration, as the
-    README documents it): ``fields`` at the top level beside ``__provenance__`` (no ``payload`` level).
+    docs/reference.md documents it): ``fields`` at the top level beside ``__provenance__`` (no ``payload`` level).
     Strict JSON, as :func:`save_json`; returns the provenance."""
     if PROVENANCE_KEY in fields:
         raise ValueError(f"a sidecar field may not be named {PROVENANCE_KEY!r}")

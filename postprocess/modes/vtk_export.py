@@ -4,7 +4,7 @@ fields on the swept wheel surface, for files ParaView opens (the pipeline writes
 The surface is the cross-section boundary swept around the axle (``postprocess.modes.geometry``):
 a vertex at angle phi of section point (r, Z) sits at (r cos phi, r sin phi, Z), the contact
 point at phi = 0.  A harmonic-n mode moves it by u_r = U_r cos n phi, u_z = U_z cos n phi,
-u_phi = U_phi sin n phi (n = 0: factor 1; README "harmonic convention").
+u_phi = U_phi sin n phi (n = 0: factor 1; docs/reference.md, "harmonic convention").
 
 The ODS is the wheel's steady response to the squeal's dominant tone: the modal amplitudes of
 [4.10] driven by the tone's complex RMS contact forces F2, F3 at the contact point,

@@ -1,6 +1,6 @@
 """Wheel receptances by modal superposition (SPEC 3.1, thesis [4.10], [4.11]).
 
-Inputs are the arrays of the wheel's modal artifact (README 'Artifacts'):
+Inputs are the arrays of the wheel's modal artifact (docs/reference.md, 'Artifacts'):
 f_hz, n, m, cls, kind, modal_mass (kg, for shapes with max |U| = 1, the
 circumferential integral included, so the n >= 1 cos twin enters [4.10] with
 this mass directly), shapes (M, nodes, 3) = (U_r, U_z, U_phi), points (r, Z).

@@ -49,7 +49,7 @@ WRITERS = (
     Writer("profiles", "pipeline.validation.profiles_doc", ("15_profiles.md",)),
     Writer("rolling_cnossos", "pipeline.validation.rolling_cnossos_doc", ("95_rolling_cnossos.md",)),
     # by hand: `python -m pipeline.study.radius`, `python -m pipeline.validation.field`,
-    # `python -m pipeline.validation.bem_check` (README, "Validation")
+    # `python -m pipeline.validation.bem_check` (docs/reference.md, "Tests, validation, benchmarks")
     Writer("radius", "pipeline.study.radius", ("91_verdict.md",), in_validate=False),
     Writer("field", "pipeline.validation.field", ("92_field.md",), in_validate=False),
     Writer("bem_wheel", "pipeline.validation.bem_check", ("72_bem_wheel.md",), in_validate=False),
