@@ -256,7 +256,7 @@ def run_listen(case: str, distance=None, height=None, allow_silent: bool = False
     plot_listening(arrays, files["png"], case)
     with artifacts.atomic_write(files["wav"]) as tmp:
         tmp.write_bytes(wav)
-    artifacts.save_sidecar(files["json"], "listen-wav", cfg, cal)   # flat: its keys at the top level (docs/reference.md)
+    artifacts.save_sidecar(files["json"], "listen-wav", cfg, cal)   # flat: keys at the top (docs/reference.md)
     artifacts.save_csv(files["bands"], BAND_COLUMNS, band_rows(arrays))
     artifacts.save_npz(files["npz"], "listen", cfg, **arrays)
     if arrays["meaningful"] and passby:

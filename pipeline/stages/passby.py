@@ -71,7 +71,7 @@ def run_passby(case: str, c: dict, geo, rad: dict, listen_cfg: dict, tag: str) -
     with artifacts.atomic_write(files["wav"]) as tmp:
         tmp.write_bytes(A.wav_bytes(pcm, A.FS, f"pass-by of case {case} at receiver {tag}; sample value v -> "
                                                  f"v * {ppc:.6e} Pa"))
-    artifacts.save_sidecar(files["json"], "passby-wav", cfg, cal)   # flat: its keys at the top level (docs/reference.md)
+    artifacts.save_sidecar(files["json"], "passby-wav", cfg, cal)   # flat: keys at the top (docs/reference.md)
     artifacts.save_npz(files["npz"], "passby", cfg, **arrays)
     log.info("pass-by %s at %s: %d squealing wheels %.1f m apart at %.0f km/h: L_pAeq = %.1f dB(A) over %.1f s, "
              "L_AFmax = %.1f dB(A), L_AE = %.1f dB(A) -> %s", case, tag, arrays["n_bogies"], arrays["bogie_spacing"],
