@@ -15,8 +15,11 @@ applied to the wheels the screen-first verdict (``pipeline.curve.screen_first``)
   share of axles (``risk.curve_risk``'s axles).
 * L_pAmax_7m5: the loudest wheel's median L_pA at 7.5 m when squealing (``risk.median_level``) from the
   time loop at the curve stage's levels above onset (``onset.LEVEL_STEPS``), the levels past the first
-  one at or above the climate's highest level dropped (the median never reads them: the same value as
-  the curve stage's).
+  one at or above the climate's highest level dropped (the median reads the table up to that level only,
+  held constant beyond its ends: the same value as the curve stage's).
+* Like the curve stage's, every column is conditional on the row's steady curving state, solved at the
+  row's own friction level: the dry and wet rows of a curve share the climate but not the wheels'
+  creepages, so their onsets can differ (R = 75 m: 0.337 dry at mu = 0.35, 0.291 at mu = 0.15).
 * L_pAmax_rolling, L_pAeq_rolling: CNOSSOS-EU rolling noise of the train's pass-by at 7.5 m
   (``train.passby`` without squeal sources); dL_squeal: ``squeal_excess.climate_excess`` of the loudest
   L_pAmax_7m5 over it with the share of passages that squeal, as the curve stage's verdict.csv.
@@ -78,12 +81,17 @@ def top_level(climate) -> float:
     """The first level of the onset scan's grid at or above the climate's highest friction level (inf
     when the climate reaches past the scanned range)."""
     grid = np.linspace(MU_LO, MU_HI, MU_STEPS + 1)
-    hi = max(c.hi for c in climate.conditions)
-    return next((float(g) for g in grid if g >= hi - 1e-12), math.inf)
+    return next((float(g) for g in grid if g >= highest(climate) - 1e-12), math.inf)
+
+
+def highest(climate) -> float:
+    """The climate's highest friction level."""
+    return max(c.hi for c in climate.conditions)
 
 
 def level_steps(mu_on: float, top: float) -> tuple:
-    """The curve stage's levels above onset, cut after the first one at or above ``top`` (module notes)."""
+    """The curve stage's levels above onset, cut after the first one at or above ``top``, the climate's
+    highest level (module notes)."""
     out = []
     for s in LEVEL_STEPS:
         out.append(s)
@@ -100,7 +108,7 @@ def wheel_risk(climate, top: float, case: str, ctx, gamma_y: float) -> tuple:
     on = wheel_onset(models, gamma_y, above=top if models.coulomb else math.inf)
     if not (math.isfinite(on.mu) and risk.p_exceed(climate, on.mu) > 0.0):
         return on, []
-    return on, level_table(models, case, on, steps=level_steps(on.mu, top))
+    return on, level_table(models, case, on, steps=level_steps(on.mu, highest(climate)))
 
 
 def risk_columns(curve, rows: list[dict]) -> dict:
