@@ -20,7 +20,7 @@ from pipeline.store.atomic import save_text
 ROOT = Path(__file__).resolve().parent.parent
 OUT = ROOT / "docs" / "benchmarks.md"
 SUITES = ["wheel", "contact", "friction_laws", "rail", "greens", "fast_rail", "any_point", "interaction", "radiation",
-          "stability", "study", "study_cases", "fresh_make", "friction", "two_point", "line", "bem"]
+          "stability", "study", "study_cases", "fresh_make", "friction", "two_point", "line", "line_climate", "bem"]
 
 
 def machine() -> str:
