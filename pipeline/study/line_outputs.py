@@ -136,7 +136,7 @@ def markdown(spec: dict, src: str, quick: bool, every: list[dict], total: int, n
 
 
 def write_outputs(spec: dict, src: str, out: Path, quick: bool, line_rows, done) -> None:
-    every = full_rows([r for r in done if r is not None])
+    every = full_rows([line_risk.EMPTY | r for r in done if r is not None])    # rows without the climate's: blank
     rows = [r for r in every if not r.get("note")]
     cols = OUT_COLUMNS + list(line_risk.COLUMNS) + band_columns()   # the climate's columns (issue 32)
     save_csv(out / "line.csv", cols, ([cell(r[c]) if not isinstance(r[c], int) else r[c] for c in cols]

@@ -54,7 +54,7 @@ EMPTY = {"climate": "", "mu_onset": "", "wheel_onset": "", "f_onset": NAN, "mode
 
 def climate_path(spec: dict) -> Path:
     """The climate file of a line (module notes); a ConfigError naming the study file and its key."""
-    name = spec["friction"].get("climate") or risk.DEFAULT_CLIMATE
+    name = (spec.get("friction") or {}).get("climate") or risk.DEFAULT_CLIMATE
     f = climate_file(name)
     if f.parent != CLIMATES and not f.is_absolute():
         f = paths.study_file(spec["name"]).parent / f
