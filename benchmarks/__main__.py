@@ -20,7 +20,8 @@ from pipeline.store.atomic import save_text
 ROOT = Path(__file__).resolve().parent.parent
 OUT = ROOT / "docs" / "benchmarks.md"
 SUITES = ["wheel", "contact", "friction_laws", "rail", "greens", "fast_rail", "any_point", "interaction", "radiation",
-          "stability", "study", "study_cases", "fresh_make", "friction", "two_point", "line", "curve_risk", "bem"]
+          "stability", "study", "study_cases", "fresh_make", "friction", "two_point", "line", "line_climate",
+          "curve_risk", "bem"]
 
 
 def machine() -> str:

@@ -1,5 +1,5 @@
 """The line study's speed (issue 27: "100 curves with one vehicle (400 wheels) run in under 5 min on 2
-cores"): `run() -> str` gives the markdown section.
+cores"; issue 32: the same with the friction climate's columns): `run() -> str` gives the markdown section.
 
     OMP_NUM_THREADS=1 .venv/bin/python -m benchmarks line --update
 
@@ -23,6 +23,7 @@ import math
 import os
 import shutil
 import tempfile
+import threading
 import time
 from pathlib import Path
 
@@ -59,6 +60,27 @@ def _fresh_build(src: Path, dst: Path) -> None:
             shutil.copytree(rail / "surface", dst / "rails" / rail.name / "surface", copy_function=os.link)
 
 
+LOAD_MID: list = []
+
+
+class _LoadWatch:
+    """The 1-min load average sampled every 10 s while the line runs (2 of it are the run's own workers)."""
+
+    def __init__(self):
+        self.samples, self.done = [], threading.Event()
+        self.thread = threading.Thread(target=self._run, daemon=True)
+        self.thread.start()
+
+    def _run(self):
+        while not self.done.wait(10.0):
+            self.samples.append(os.getloadavg()[0])
+
+    def stop(self) -> list:
+        self.done.set()
+        self.thread.join()
+        return self.samples
+
+
 def hundred_curves(tmp: Path) -> dict:
     from pipeline.store import paths
     from pipeline.study.stage import run_study
@@ -74,6 +96,7 @@ def hundred_curves(tmp: Path) -> dict:
     os.environ.update(SQUEAL_BUILD_DIR=str(build), SQUEAL_STUDY_DIR=str(studies))
     load0 = os.getloadavg()
     t0 = time.perf_counter()
+    watch = _LoadWatch()
     try:
         run_study("bench_line", workers=2, out=tmp / "out", progress=False)
     finally:
@@ -83,11 +106,12 @@ def hundred_curves(tmp: Path) -> dict:
             else:
                 os.environ[k] = v
     wall = time.perf_counter() - t0
+    LOAD_MID[:] = watch.stop()
     import csv
 
     rows = list(csv.DictReader(open(tmp / "out" / "line.csv")))
     tab = list(csv.DictReader(open(tmp / "out" / "table.csv")))
-    return {"wall": wall, "load0": load0, "load1": os.getloadavg(), "rows": rows,
+    return {"wall": wall, "load0": load0, "load1": os.getloadavg(), "rows": rows, "load_mid": LOAD_MID,
             "worker_s": sum(float(r["wall_s"]) for r in tab),
             "kernels": len(list((build / "rails").glob("*/moving/*.npz"))),
             "tables": len(list((build / "rails").glob("*/points/*.npz")))}
@@ -153,6 +177,8 @@ def run() -> str:
     total = sum(parts.values())
     per = ", ".join(f"{k} {1e3 * v / sb['wheels']:.0f} ms" for k, v in parts.items())
     ratio = sb["t"]["curve stage"] / sb["t"]["screen first"]
+    p = [float(r["p_squeal"]) for r in rows if r.get("p_squeal")]
+    mid = h["load_mid"]
     return f"""## Line study: 100 curves, screen first (issue 27)
 
 `benchmarks/line.py` (`python -m benchmarks line --update`); load average {load[0]:.1f} at the start ({'no other job running' if load[0] < 1.5 else '2 cores shared with other jobs: the times are those of a loaded machine'}).
@@ -162,7 +188,11 @@ def run() -> str:
 {n} curves (R = {R_MIN:g}-{R_MAX:g} m, the C20 metro, mu = {MU:g}, speeds and cant of the radius study's design rule)
 of which {len(noted)} have no steady curving state (recorded, not computed) and {len(sq)} squeal; {tl} of the
 {wheels} wheels were unstable in the screen and run in the time loop (and radiate and listen where they squeal).
-Load average {h['load0'][0]:.1f} before, {h['load1'][0]:.1f} after.  Worker time {h['worker_s']:.0f} s in all
+Every row with the friction climate's columns (issue 32, `pipeline/study/line_risk.py`: the default climate, every
+wheel's onset scanned to the climate's top, the time loop's levels above onset where p_squeal > 0, CNOSSOS-EU rolling
+noise and the expected excess): {sum(x > 0 for x in p)} curves can squeal in the climate (p_squeal > 0, mean
+{(sum(p) / max(len(p), 1)):.3f}).  Before these columns (one friction value only): 304 s.
+Load average {h['load0'][0]:.1f} before, {h['load1'][0]:.1f} after{f", {min(mid):.1f}-{max(mid):.1f} during the run (2 of it are its workers)" if mid else ""}.  Worker time {h['worker_s']:.0f} s in all
 ({h['worker_s'] / max(n, 1):.1f} s per curve); {h['kernels']} moving rail kernels and {h['tables']} listed-point
 wave tables built inside the run (the running surface's table, built once per rail, ~130 s, was there: a cache).
 The wall time includes starting the cluster and writing the outputs (table, figures, export).

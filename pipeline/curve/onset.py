@@ -110,8 +110,15 @@ def growth(scr: Screen, mu: float) -> float:
     return float(max(s)) if s else -1e3
 
 
-def wheel_onset(models, gamma_y: float, lo: float = MU_LO, hi: float = MU_HI, steps: int = MU_STEPS) -> WheelOnset:
-    """The onset of one wheel (module notes) from its ``what_ifs.CaseModels``."""
+class _Above(Exception):
+    """The scan asked for a level above ``wheel_onset``'s ``above``: no onset at or below it."""
+
+
+def wheel_onset(models, gamma_y: float, lo: float = MU_LO, hi: float = MU_HI, steps: int = MU_STEPS,
+                above: float = math.inf) -> WheelOnset:
+    """The onset of one wheel (module notes) from its ``what_ifs.CaseModels``.  ``above``: stop the scan
+    where it would go past this level (the same grid and bracket, so an onset below it is the full
+    scan's, bit for bit); quiet up to there: '>' the last level scanned (the line study's fast path)."""
     if gamma_y == 0.0:
         return WheelOnset(Onset(math.nan, False, lo, hi, (hi - lo) / steps, 0), math.nan, "",
                           "pure rolling: no lateral creep force")
@@ -119,7 +126,18 @@ def wheel_onset(models, gamma_y: float, lo: float = MU_LO, hi: float = MU_HI, st
         top = max(v for q, v in models.friction.params.items() if q in COEFFICIENTS)
         hi = min(hi, math.floor(1e3 * models.friction.mu / top) / 1e3)
     scr = Screen(models)
-    on = find_onset(lambda mu: growth(scr, mu), lo, hi, steps, XTOL)
+    seen = [lo]
+
+    def g(mu):
+        if mu > above + 1e-9:
+            raise _Above
+        seen.append(mu)
+        return growth(scr, mu)
+
+    try:
+        on = find_onset(g, lo, hi, steps, XTOL)
+    except _Above:
+        return WheelOnset(Onset(math.nan, False, lo, max(seen), (hi - lo) / steps, len(seen) - 1), math.nan, "")
     if on.below or not math.isfinite(on.mu):
         at = lo if on.below else math.nan
     else:

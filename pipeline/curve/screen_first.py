@@ -174,7 +174,8 @@ def without_figures(skip: bool = True):
 
 def run_screen_first(curve, *, what_ifs: bool = False, write: bool = True, figures: bool = True) -> dict:
     """The verdict of ``curve`` (a Curve, a path to a curve file or a shipped name) screen first
-    (module notes): {'rows': one per wheel (``stage.COLUMNS``, plus ``time_loop``: whether it ran),
+    (module notes): {'rows': one per wheel (``stage.COLUMNS``, plus ``time_loop``: whether it ran, and
+    ``context``: its screen's CaseContext or None, for the line's onset: ``pipeline.study.line_risk``),
     'info': the Curve}; ``write``: build/curves/<curve>/verdict.csv; ``figures``: the stages of a
     squealing wheel draw their figures (``without_figures`` otherwise)."""
     t0 = time.perf_counter()
@@ -189,16 +190,16 @@ def run_screen_first(curve, *, what_ifs: bool = False, write: bool = True, figur
         for p, rc in zip(points, cases):
             root, label, ctx = screen(rc, p.gamma_y)
             if root is None:
-                rows.append(quiet_row(p, root, label) | {"time_loop": False})
+                rows.append(quiet_row(p, root, label) | {"time_loop": False, "context": ctx})
                 continue
             t0 = time.perf_counter()
             L_F2 = time_loop_L_F2(rc, ctx)
             t0 = _tick("time loop (unstable wheels)", t0)
             if not squeals(L_F2):                 # the time loop overrules the screen: quiet, no stage to run
-                rows.append(quiet_row(p, root, label) | {"L_F2": L_F2, "time_loop": True})
+                rows.append(quiet_row(p, root, label) | {"L_F2": L_F2, "time_loop": True, "context": ctx})
                 continue
             with without_figures(not figures):
-                rows.append(wheel_verdict(info, p, what_ifs=what_ifs) | {"time_loop": True})
+                rows.append(wheel_verdict(info, p, what_ifs=what_ifs) | {"time_loop": True, "context": ctx})
             _tick("stages of squealing wheels", t0)
     if write:
         artifacts.save_csv(paths.curve_dir(info.name) / "verdict.csv", COLUMNS,

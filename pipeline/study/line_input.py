@@ -39,6 +39,7 @@ from pipeline.store import paths
 from pipeline.config.loader import ConfigError, Field, validate
 from pipeline.config.curve_schemas import CURVE
 from pipeline.config.nouns import Curve
+from pipeline.study.line_risk import climate_cell
 from pipeline.config.curve_inputs import curve_path, is_path, available_vehicles, curve_of, read_vehicle
 from pipeline.store.atomic import save_text
 from pipeline.study.line_friction import law_condition, allowed
@@ -205,6 +206,7 @@ def curve_data(spec: dict, row: LineRow, name: str) -> dict:
                 description=f"line {spec['name']}, curve {row.id} at {row.chainage_m:g} m ({row.length_m:g} m long), "
                             f"{row.vehicle}, friction {row.condition}")
     data["friction"] = dict(row.table) if row.table else {"law": "coulomb", "mu": row.mu}
+    data["friction"]["climate"] = climate_cell(spec)                # the risk columns' climate (line_risk)
     try:
         validate(data, CURVE, f"{curves_file(spec)}: line {row.line}")
     except ConfigError as e:

@@ -16,6 +16,7 @@ from postprocess.plots.line import chainage_figure, level_radius_figure
 from pipeline.store.atomic import save_figure, save_text
 from pipeline.curve.verdict_report import cell
 from pipeline.study.line_html import write_page
+from pipeline.study import line_classes, line_risk
 
 OUT_COLUMNS = ["id", "chainage_m", "radius_m", "cant_mm", "length_m", "speed_kmh", "vehicle", "friction", "mu",
                "squeals", "wheel", "f_squeal", "mode", "L_pA", "L_W", "L_F2", "squealing_wheels", "unstable_wheels",
@@ -135,9 +136,9 @@ def markdown(spec: dict, src: str, quick: bool, every: list[dict], total: int, n
 
 
 def write_outputs(spec: dict, src: str, out: Path, quick: bool, line_rows, done) -> None:
-    every = full_rows([r for r in done if r is not None])
+    every = full_rows([line_risk.EMPTY | r for r in done if r is not None])    # rows without the climate's: blank
     rows = [r for r in every if not r.get("note")]
-    cols = OUT_COLUMNS + band_columns()
+    cols = OUT_COLUMNS + list(line_risk.COLUMNS) + band_columns()   # the climate's columns (issue 32)
     save_csv(out / "line.csv", cols, ([cell(r[c]) if not isinstance(r[c], int) else r[c] for c in cols]
                                       for r in every))
     _, n_export = write_export(spec, out, rows)
@@ -152,6 +153,8 @@ def write_outputs(spec: dict, src: str, out: Path, quick: bool, line_rows, done)
                                     arr["friction"], {TITLES[k]: [r[f"{k}_dB"] for r in rows] for k in RULES},
                                     ids=arr["id"]), out / "chainage.png", dpi=100)
     md = markdown(spec, src, quick, every, len(line_rows), n_export)
+    classes = line_classes.classes_markdown(line_classes.write_classes(out, rows), line_risk.climate_cell(spec))
+    md = md.replace("## Every curve", classes + "## Every curve", 1)    # per radius class (issue 32)
     save_text(md, out / "line.md")
     save_text(md, out / "summary.md")
     write_page(out, md, every, spec["name"])      # verdict.html: the page to open (issue 33)

@@ -21,6 +21,7 @@ from postprocess.exports import NM_BANDS_HZ, band_power, level, nm_band_levels
 from pipeline.store import paths
 from pipeline.curve.verdict_report import loudest
 from pipeline.curve.screen_first import run_screen_first
+from pipeline.study.line_risk import EMPTY as NO_RISK, risk_columns
 from pipeline.config.loader import ConfigError
 
 NAN = float("nan")
@@ -106,5 +107,6 @@ def line_case(ctx: LineContext, t: LineTask) -> dict:
     try:
         res = run_screen_first(t.curve, what_ifs=ctx.what_ifs, figures=ctx.figures)
     except ConfigError as e:                           # no steady curving, or a wheel outside a case's range
-        return dict(t.row) | summary_row(t.curve.name, []) | {"note": " ".join(str(e).split())}
-    return dict(t.row) | summary_row(t.curve.name, res["rows"]) | {"note": ""}
+        return dict(t.row) | summary_row(t.curve.name, []) | NO_RISK | {"note": " ".join(str(e).split())}
+    risk = risk_columns(t.curve, res["rows"])          # onset, climate, rolling noise (issue 32: line_risk)
+    return dict(t.row) | summary_row(t.curve.name, res["rows"]) | risk | {"note": ""}

@@ -95,6 +95,24 @@ def test_three_curve_line(tmp_path):
     for k in (("W", "wet"), ("B", "dry")):
         assert rows[k]["squeals"] == "0" and rows[k]["note"] == ""
     assert rows[("B", "dry")]["cnossos_vs_physics"] == "agree: quiet"
+    # the climate's columns (issue 32, tests/study/test_line_risk.py): R = 75 m squeals in part of the default
+    # climate (its onset 0.3374 at a1i, as `make curve CURVE=r75`), R = 600 m never (quiet up to the scan's cut)
+    assert (a["climate"], a["wheel_onset"], a["mu_onset"], a["mode_onset"]) == ("default", "a1i", "0.3374", "(2,0,a)")
+    assert 0 < float(a["p_squeal"]) < 0.1 and float(a["dL_squeal"]) > 0 and float(a["L_pAmax_7m5"]) > 70
+    b = rows[("B", "dry")]
+    assert b["p_squeal"] == "0" and b["mu_onset"] == ">0.4" and b["L_pAmax_7m5"] == "" and b["dL_squeal"] == "0"
+    assert 55 < float(b["L_pAmax_rolling"]) < 95
+    text = (out / "line.csv").read_text() + (out / "line_classes.csv").read_text()
+    assert "nan" not in text.lower() and "inf" not in text.lower()
+    # line_classes.csv recomputed from line.csv: per radius class and condition, the mean p_squeal and dL_squeal
+    classes = {(x["radius_class"], x["friction"]): x for x in csv.DictReader(open(out / "line_classes.csv"))}
+    assert set(classes) == {("51-100", "dry"), ("101-200", "wet"), ("> 500", "dry")}
+    for (cls, fr), x in classes.items():
+        r = next(v for v in rows.values() if v["friction"] == fr and
+                 {"51-100": 75.0, "101-200": 150.0, "> 500": 600.0}[cls] == float(v["radius_m"]))
+        assert x["curves"] == "1" and float(x["p_squeal"]) == pytest.approx(float(r["p_squeal"]), rel=1e-5, abs=1e-9)
+        assert float(x["dL_squeal"]) == pytest.approx(float(r["dL_squeal"]), rel=1e-5, abs=1e-9)
+        assert float(x["cnossos_dB"]) == float(r["cnossos_dB"]) and float(x["schall03_dB"]) == float(r["schall03_dB"])
     assert rows[("W", "wet")]["schall03_vs_physics"] == "penalised, quiet"
     # the verdict of the squealing row is the curve stage's (its verdict.csv, screen first)
     from pipeline.curve.stage import read_verdict

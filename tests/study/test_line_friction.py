@@ -42,8 +42,9 @@ def test_line_with_a_preset_and_a_falling_law(tmp_path):
     assert float(rows["hpf"]["mu"]) == pytest.approx(0.25) and float(rows["base:exponential"]["mu"]) == 0.33
     tables = {k: tomllib.loads((out / "curves" / f"{v['curve']}.toml").read_text())["friction"]
               for k, v in rows.items()}
-    assert tables["hpf"] == {"preset": "hpf"}
-    assert tables["base:exponential"] == {"law": "exponential", "fkin": 0.14, "fexp1": 0.19, "sabsh1": 1250.0}
+    assert tables["hpf"] == {"preset": "hpf", "climate": "default"}      # the line's climate (issue 32)
+    assert tables["base:exponential"] == {"law": "exponential", "fkin": 0.14, "fexp1": 0.19, "sabsh1": 1250.0,
+                                          "climate": "default"}
     print({k: (v["squeals"], v["wheel"], v["f_squeal"], v["L_pA"], v["unstable_wheels"]) for k, v in rows.items()})
     for cond, curve in (("hpf", "r75_hpf"), ("base:exponential", "r75_falling")):
         ref = ROOT / "build" / "curves" / curve / "verdict.csv"

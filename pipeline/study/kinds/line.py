@@ -25,6 +25,7 @@ from pipeline.study.results_table import ResultsTable
 from pipeline.study.runner import Task, pending, run_tasks
 from pipeline.store.code_hash import code_key
 from pipeline.study.line_outputs import write_outputs
+from pipeline.study import line_risk
 from pipeline.study.schemas import COMMON
 
 log = logging.getLogger("pipeline.study")
@@ -57,6 +58,9 @@ SCHEMA = {
                         doc="Coulomb coefficient of the CSV's friction condition 'dry'"),
         "wet_mu": Field(float, min=0.05, max=1.0, default=0.15,
                         doc="Coulomb coefficient of the CSV's friction condition 'wet'"),
+        "climate": Field(str, default=None, doc="friction climate of every curve's risk columns (issue 32): "
+                                                "pipeline/climates/<name>.toml or a path relative to the study "
+                                                "file's folder (default: 'default'; docs/friction_climate.md)"),
     },
     "what_ifs": Field(bool, default=False, doc="the curve verdict's mitigation what-ifs for every squealing wheel "
                                                "(friction threshold, modal damping; slower)"),
@@ -78,7 +82,8 @@ SCHEMA = {
 
 def columns() -> dict:
     """The results table's columns: the row's inputs, the verdict, the bands, the bookkeeping."""
-    return ROW_COLUMNS | RESULT_COLUMNS | {b: float for b in band_columns()} | {"wall_s": float, "worker": str}
+    return ROW_COLUMNS | RESULT_COLUMNS | line_risk.COLUMNS | {b: float for b in band_columns()} | {"wall_s": float,
+                                                                                                  "worker": str}
 
 
 def selected(spec: dict, quick: bool) -> list[LineRow]:
@@ -91,6 +96,7 @@ def inputs_hash(spec: dict, curve_text: str, curve) -> str:
     files = [curve.vehicle.source, paths.wheel_file(curve.wheel), paths.rail_file(curve.rail)]
     return config_hash({"curve": curve_text, "files": [f.read_text() if f.exists() else "" for f in files],
                         "code": code_key(*ROW_FUNCTIONS, ignore_docs=True), "what_ifs": spec["what_ifs"],
+                        "climate": line_risk.climate_path(spec).read_text(),
                         "figures": spec["wheel_figures"]})
 
 
@@ -126,4 +132,5 @@ def run(spec: dict, src: str, out: Path, *, quick: bool, client, progress: bool 
 
 def check(spec: dict) -> str:
     """``make check STUDY=``: every row of the line's CSV of curves and each row's curve file (ConfigError)."""
+    line_risk.line_climate(spec)
     return f"{len(check_rows(spec))} curves from {spec['curves']}"
