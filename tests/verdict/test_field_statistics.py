@@ -153,13 +153,7 @@ def test_limits_the_page_states(rows, page):
     m = re.search(r"lies above it from R = (\S+) m for the metro and from R =\s+(\S+) m for the tram", page)
     assert m, "the page's dry-range sentence"
     for v, stated in zip(("metro", "tram"), m.groups()):
-        rs = sorted((r for r in rows if r["vehicle"] == v), key=lambda r: r["R"])
-        exit_r = math.nan
-        for r in reversed(rs):
-            if r["mu_onset"] > dry_hi:
-                exit_r = r["R"]
-            else:
-                break
+        exit_r = fs.dry_exit(rows, v, dry_hi)
         assert stated == ("-" if math.isnan(exit_r) else f"{exit_r:g}"), v
     for r in rows:
         if r["R"] > 300:
