@@ -23,7 +23,8 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-OLD = "1e9bd0c"   # main before session 14's speed-ups (per-process parse caches, the pass-by in one pass, ...)
+OLD = "3bbe3d3"   # main before the onset scan read the count of growing poles alone below its bracket
+#                   (1e9bd0c -> 244246b, the parse caches and the pass-by in one pass: 44 -> 31 s CPU, docs/benchmarks.md)
 ROUNDS = 2
 NAME = "bench_r75"
 

@@ -16,6 +16,8 @@ cores"; issue 32: the same with the friction climate's columns): `run() -> str` 
    what-ifs) and the screen-first verdict (``run_screen_first``), alternating, rail kernels warm for
    both; with the screen-first path's cost per part (curving, contact, wheel modal data, rail kernel,
    screen, the time loop of the unstable wheels).
+3. **The onset scan by the count against every level's poles.**  The same four curves' climate columns
+   (``line_risk.risk_columns``), the scan as it is and with every level's poles located, side by side.
 """
 from __future__ import annotations
 
@@ -123,6 +125,7 @@ def side_by_side() -> dict:
     from pipeline.curve import screen_first
     from pipeline.study.radius import design
     from pipeline.curve.stage import run_curve
+    from pipeline.study.line_risk import risk_columns
 
     spec, _ = load_study("metro_line")
     spec = dict(spec, name="bench_side")
@@ -134,7 +137,7 @@ def side_by_side() -> dict:
     curves = [c for c, _ in line_curves(spec, rows, folder).values()]
     t = {"curve stage": 0.0, "screen first": 0.0}
     parts: dict = {}
-    agree, n_tl, n_unstable = 0, 0, 0
+    agree, n_tl, n_unstable, same, risk = 0, 0, 0, 0, {}
     try:
         for curve in curves:                                # warm: kernels, curving, numba, modes
             screen_first.run_screen_first(curve, write=False)
@@ -157,9 +160,32 @@ def side_by_side() -> dict:
                 agree += r["squeals"] == full[r["wheel"]]["squeals"]
                 n_tl += bool(r["time_loop"])
                 n_unstable += math.isfinite(r["screen_sigma"])
+            for label, skip in (("count", True), ("roots", False)):
+                t0 = time.process_time()
+                risk[label] = risk_columns(curve, first) if skip else _every_level_located(curve, first)
+                t[label] = t.get(label, 0.0) + time.process_time() - t0
+            same += _same(risk["count"], risk["roots"])
     finally:
         shutil.rmtree(folder, ignore_errors=True)
-    return {"t": t, "parts": parts, "wheels": 4 * len(curves), "agree": agree, "time_loop": n_tl}
+    return {"t": t, "parts": parts, "wheels": 4 * len(curves), "agree": agree, "time_loop": n_tl, "same": same}
+
+
+def _every_level_located(curve, rows) -> dict:
+    """The row's risk columns with the onset scan locating the poles at every level (the scan before
+    it read the count alone where no pole grows: ``pipeline.curve.onset.Screen.quiet``)."""
+    from pipeline.curve.onset import Screen
+    from pipeline.study.line_risk import risk_columns
+
+    quiet = Screen.quiet
+    Screen.quiet = lambda self, mu: False
+    try:
+        return risk_columns(curve, rows)
+    finally:
+        Screen.quiet = quiet
+
+
+def _same(a: dict, b: dict) -> bool:
+    return all(a[k] == b[k] or (isinstance(a[k], float) and math.isnan(a[k]) and math.isnan(b[k])) for k in a)
 
 
 def run() -> str:
@@ -203,6 +229,14 @@ time loop, with the stages' files and figures) {sb['t']['curve stage']:.1f} s, s
 {sb['t']['screen first']:.1f} s: **{ratio:.1f}x**; {sb['time_loop']} of {sb['wheels']} wheels run in the time loop,
 the same squeal verdict at {sb['agree']} of {sb['wheels']} wheels.  Screen first per wheel ({1e3 * total / sb['wheels']:.0f} ms):
 {per}.
+
+**The climate's columns: the onset scan by the count against locating every level's poles** (the same
+{len(SIDE_BY_SIDE)} curves, one process, CPU time): {sb['t']['count']:.1f} s against {sb['t']['roots']:.1f} s
+(**{sb['t']['roots'] / sb['t']['count']:.1f}x**); the columns equal in every digit for {sb['same']} of
+{len(SIDE_BY_SIDE)} curves.  Below its bracket the scan reads only the sign of the growth rate, so a level where
+the argument principle counts no growing pole is passed on that count (`nyquist.no_growing_pole`: the winding
+number of P on the unit circle) without the secant's roots and the Rouche margin; brentq evaluates the
+bracket's ends itself, as before (the level's growth rate is kept per wheel, so they are not located twice).
 
 How it was cut (cProfile first): the curve's rigid contact search memoised per shift (the bogie's Newton
 asks for the same contact ~4 times in 5: 3x faster curving, the same numbers); the screen from arrays built

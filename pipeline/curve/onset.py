@@ -85,29 +85,53 @@ def contact_at(models, mu: float):
 
 class Screen:
     """``CaseModels.roots`` at any mu with the structures' transforms (``screen.Basis``, and the
-    argument principle's contour cached on it) built once: the same poles, without rebuilding the
-    mu-independent part per friction level."""
+    argument principle's contour shared by it and ``quiet``) built once: the same poles, without
+    rebuilding the mu-independent part per friction level; each level's linear model and growth rate
+    kept (brentq evaluates its bracket's ends again)."""
 
     def __init__(self, models):
         c = models.ctx
         wheel, kernel, spin = mirrored(c.gamma_y, models.wheel(), np.asarray(c.rail_kernel, float), models.spin)
         self.models, self.wheel, self.kernel = models, wheel, kernel
         self.args = c.loop.linearise(gamma_y=-abs(c.gamma_y), spin=spin)
-        self.basis = None
+        self.basis = self.contour = None
+        self.models_at, self.growth_at = {}, {}
+
+    def linear(self, mu: float):
+        from solvers.stability.screen import linearise  # lazy: brings in numba
+
+        if mu not in self.models_at:
+            self.models_at[mu] = linearise(self.wheel, self.kernel, contact_at(self.models, mu), **self.args)
+        return self.models_at[mu]
 
     def roots(self, mu: float):
-        from solvers.stability.screen import Basis, linearise, screen  # lazy: brings in numba
+        from solvers.stability.screen import Basis, screen  # lazy: brings in numba
 
-        lm = linearise(self.wheel, self.kernel, contact_at(self.models, mu), **self.args)
+        lm = self.linear(mu)
         if self.basis is None:
             self.basis = Basis(lm)
-        return screen(lm, self.basis)
+            self.basis.contour = self.contour        # the same Contour the screen builds (structure only)
+        roots = screen(lm, self.basis)
+        self.contour = self.basis.contour
+        return roots
+
+    def quiet(self, mu: float) -> bool:
+        """No pole grows at ``mu`` (the argument principle's count alone: ``nyquist.no_growing_pole``)."""
+        from solvers.stability.characteristic import _filter  # lazy: brings in numba
+        from solvers.stability.nyquist import Contour, no_growing_pole  # lazy: brings in numba
+
+        lm = self.linear(mu)
+        if self.contour is None:
+            self.contour = Contour(lm, _filter(lm))
+        return no_growing_pole(lm, self.contour)
 
 
 def growth(scr: Screen, mu: float) -> float:
     """The largest growth rate (1/s) of the wheel-mode poles at ``mu`` (-1e3 when none is found)."""
-    s = [r.sigma for r in scr.roots(mu) if r.mode >= 0]
-    return float(max(s)) if s else -1e3
+    if mu not in scr.growth_at:
+        s = [r.sigma for r in scr.roots(mu) if r.mode >= 0]
+        scr.growth_at[mu] = float(max(s)) if s else -1e3
+    return scr.growth_at[mu]
 
 
 class _Above(Exception):
@@ -128,14 +152,25 @@ def wheel_onset(models, gamma_y: float, lo: float = MU_LO, hi: float = MU_HI, st
     scr = Screen(models)
     seen = [lo]
 
-    def g(mu):
+    def visit(mu):
         if mu > above + 1e-9:
             raise _Above
         seen.append(mu)
+
+    def g(mu):
+        visit(mu)
         return growth(scr, mu)
 
+    def quiet(mu):
+        if mu > above + 1e-9:
+            raise _Above
+        q = scr.quiet(mu)
+        if q:
+            seen.append(mu)
+        return q
+
     try:
-        on = find_onset(g, lo, hi, steps, XTOL)
+        on = find_onset(g, lo, hi, steps, XTOL, quiet=quiet)
     except _Above:
         return WheelOnset(Onset(math.nan, False, lo, max(seen), (hi - lo) / steps, len(seen) - 1), math.nan, "")
     if on.below or not math.isfinite(on.mu):

@@ -174,8 +174,8 @@ def winding(fun, t: np.ndarray, values: np.ndarray) -> tuple[float, bool, np.nda
     return float(total), resolved, cat(new_t), cat(new_f)
 
 
-def count_unstable(model, contour: Contour) -> tuple[int, float, float, bool, int]:
-    """(N, eps_kernel, min |D|, resolved, samples) on |z| = 1 (module notes)."""
+def _winding(model, contour: Contour) -> tuple[float, bool, np.ndarray]:
+    """(-Delta arg P / pi on the upper half circle, resolved, the refined angles) (module notes)."""
     c = contour
     P0 = c.P(model, c.z, c.Y, c.W)
     fun = (lambda th: c.P(model, np.exp(1j * th)))
@@ -185,6 +185,19 @@ def count_unstable(model, contour: Contour) -> tuple[int, float, float, bool, in
     p_inf = abs(complex(_contact_factor(model, inf)[0] * _det(model, np.zeros((1, 2, 2)), inf)[0]))
     if abs(n - round(n)) > 1e-3 or not p_inf > 1e-9 * np.median(np.abs(P0)):
         resolved = False
+    return n, resolved, th
+
+
+def no_growing_pole(model, contour: Contour) -> bool:
+    """N = 0: no closed-loop pole with sigma > 0, so ``certify`` keeps no growing pole (the count alone,
+    without the roots or the Rouche margin: the onset scan's cheap test, ``stability.onset``)."""
+    return int(round(_winding(model, contour)[0])) == 0
+
+
+def count_unstable(model, contour: Contour) -> tuple[int, float, float, bool, int]:
+    """(N, eps_kernel, min |D|, resolved, samples) on |z| = 1 (module notes)."""
+    c = contour
+    n, resolved, th = _winding(model, c)
     zz = np.concatenate([c.z, np.exp(1j * th)])
     Y = np.concatenate([c.Y, c.structure(np.exp(1j * th))]) if len(th) else c.Y
     eps = rouche_eps(model, Y, zz, c.B)

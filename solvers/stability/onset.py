@@ -40,9 +40,11 @@ class Onset(NamedTuple):
 
 
 def find_onset(growth: Callable[[float], float], lo: float = 0.1, hi: float = 0.8, n: int = 8,
-               xtol: float = 1e-3) -> Onset:
+               xtol: float = 1e-3, quiet: Callable[[float], bool] | None = None) -> Onset:
     """The smallest mu in [lo, hi] where ``growth`` (module notes) crosses zero upwards: coarse scan
-    on ``n`` equal steps, then brentq to ``xtol`` in the first bracket."""
+    on ``n`` equal steps, then brentq to ``xtol`` in the first bracket.  ``quiet(mu)``: a cheaper
+    test, true only where no pole grows (growth(mu) <= 0: the count of growing poles is zero); the scan
+    then skips ``growth`` at that level (only its sign is read there; brentq evaluates its bracket's ends)."""
     if not 0.0 < lo < hi:
         raise ValueError(f"find_onset: need 0 < lo < hi, got lo = {lo}, hi = {hi}")
     grid = np.linspace(lo, hi, int(n) + 1)
@@ -52,11 +54,14 @@ def find_onset(growth: Callable[[float], float], lo: float = 0.1, hi: float = 0.
         calls[0] += 1
         return float(growth(float(mu)))
 
-    prev = g(grid[0])
+    def level(mu):
+        return -math.inf if quiet is not None and quiet(float(mu)) else g(mu)
+
+    prev = level(grid[0])
     if prev > 0:
         return Onset(math.nan, True, lo, hi, grid[1] - grid[0], calls[0])
     for a, b in zip(grid[:-1], grid[1:]):
-        gb = g(b)
+        gb = level(b)
         if gb > 0:
             mu = brentq(g, a, b, xtol=xtol) if prev < 0 else float(a)
             return Onset(float(mu), False, lo, hi, grid[1] - grid[0], calls[0])

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from solvers.stability.screen import LinearModel, Root, _det, _filter, _modal_terms, _outer, screen
-from solvers.stability.nyquist import Contour, _contact_factor, certify, count_unstable
+from solvers.stability.nyquist import Contour, _contact_factor, certify, count_unstable, no_growing_pole
 
 DT = 36e-6
 
@@ -53,6 +53,14 @@ def test_count_is_the_polynomials(args):
     n, eps, dmin, resolved, _ = count_unstable(lm, Contour(lm))
     assert resolved and dmin > 0
     assert n == _polynomial_count(lm)
+
+
+@pytest.mark.parametrize("args", CASES)
+def test_no_growing_pole_is_a_zero_count(args):
+    """The onset scan's cheap test (the count without roots or margin) is true exactly where the
+    characteristic polynomial has no root outside the unit circle."""
+    lm = _model(*args)
+    assert no_growing_pole(lm, Contour(lm, _filter(lm))) == (_polynomial_count(lm) == 0)
 
 
 def test_counts_cover_stable_and_unstable():

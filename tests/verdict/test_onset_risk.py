@@ -44,6 +44,23 @@ def test_find_onset_first_crossing():
     assert find_onset(lambda mu: 1.0, 0.1, 0.8).text() == "<0.1"
 
 
+def test_find_onset_quiet_levels_skip_growth():
+    """A cheap ``quiet`` test (true where growth <= 0) gives the same onset, the same bits, with growth
+    evaluated only at the bracket's upper level and by brentq."""
+    g = lambda mu: (mu - 0.3137) * 100 if mu < 0.45 else (mu - 0.6) * 50   # noqa: E731
+    asked = []
+
+    def counted(mu):
+        asked.append(mu)
+        return g(mu)
+
+    full = find_onset(g, 0.1, 0.8, 7, xtol=1e-6)
+    fast = find_onset(counted, 0.1, 0.8, 7, xtol=1e-6, quiet=lambda mu: g(mu) <= 0)
+    assert fast.mu == full.mu and fast.evaluations < full.evaluations
+    assert min(asked) == pytest.approx(0.3) and 0.1 not in asked and 0.2 not in asked
+    assert find_onset(lambda mu: -1.0 - mu, 0.1, 0.8, quiet=lambda mu: True).text() == ">0.8"
+
+
 def test_exceedance_uniform_closed_form(tmp_path):
     f = tmp_path / "u2.toml"
     f.write_text(UNIFORM)
