@@ -10,7 +10,7 @@ import pytest
 
 from pipeline.api import ROOT, RunError, curve_verdict
 
-TEXT = {"wheel", "screen_mode", "mode", "zeta_needed", "wav", "mu_onset", "mode_onset"}   # mu_onset: a number or ">0.8"
+TEXT = {"wheel", "screen_mode", "mode", "zeta_needed", "wav", "mu_onset", "mu_squeal_range", "mode_onset"}   # ">0.8", "0.3374-"
 
 
 def csv_rows(path: Path) -> list[dict]:

@@ -36,7 +36,7 @@ from pipeline.stages.listen import listener_inputs
 from pipeline.curve.what_ifs import mirrored
 from postprocess.listening import listener as L
 from solvers.constants import SQUEAL_LEVEL_DB
-from solvers.stability.onset import Onset, find_onset
+from solvers.stability.onset import Onset, find_onset, unstable_windows
 from solvers.study import squeals
 
 MU_LO, MU_HI, MU_STEPS = 0.1, 0.8, 7      # the scanned range (step 0.1)
@@ -50,6 +50,18 @@ class WheelOnset(NamedTuple):
     f_hz: float              # frequency of the growing pole just above onset
     mode: str                # its wheel mode label
     note: str = ""
+    scanned: tuple | None = None   # the unstable windows up to the climate's top (``wheel_onset``'s ``top``)
+
+    @property
+    def windows(self) -> tuple:
+        """The friction intervals (a, b) where the wheel squeals: the scanned ones, else (onset, inf)
+        (b = inf: up to the scan's top and, unscanned, beyond); () without an onset."""
+        if self.scanned is not None:
+            return self.scanned
+        return ((self.mu, math.inf),) if math.isfinite(self.mu) else ()
+
+    def range_cell(self) -> str:
+        return range_text(self.windows)
 
     @property
     def mu(self) -> float:
@@ -62,6 +74,20 @@ class WheelOnset(NamedTuple):
 
     def cell(self) -> str:
         return "" if self.onset is None else self.onset.text()
+
+
+def range_text(windows) -> str:
+    """verdict.csv's ``mu_squeal_range``: the windows as 'a-b' ('a-' when open), space separated."""
+    return " ".join(f"{a:.4g}-" + (f"{b:.4g}" if math.isfinite(b) else "") for a, b in windows)
+
+
+def range_windows(text: str) -> tuple:
+    """The windows of a ``mu_squeal_range`` cell (``range_text``'s inverse, to its 4 digits)."""
+    out = []
+    for part in text.split():
+        a, b = part.split("-")
+        out.append((float(a), float(b) if b else math.inf))
+    return tuple(out)
 
 
 def law_at(law: FrictionLaw, level: float) -> FrictionLaw:
@@ -139,10 +165,12 @@ class _Above(Exception):
 
 
 def wheel_onset(models, gamma_y: float, lo: float = MU_LO, hi: float = MU_HI, steps: int = MU_STEPS,
-                above: float = math.inf) -> WheelOnset:
+                above: float = math.inf, top: float | None = None) -> WheelOnset:
     """The onset of one wheel (module notes) from its ``what_ifs.CaseModels``.  ``above``: stop the scan
     where it would go past this level (the same grid and bracket, so an onset below it is the full
-    scan's, bit for bit); quiet up to there: '>' the last level scanned (the line study's fast path)."""
+    scan's, bit for bit); quiet up to there: '>' the last level scanned (the line study's fast path).
+    ``top``: the scan continued from the onset up to this level for the windows where the wheel squeals
+    (``solvers.stability.onset.unstable_windows``; it may be stable again above a window)."""
     if gamma_y == 0.0:
         return WheelOnset(Onset(math.nan, False, lo, hi, (hi - lo) / steps, 0), math.nan, "",
                           "pure rolling: no lateral creep force")
@@ -181,7 +209,10 @@ def wheel_onset(models, gamma_y: float, lo: float = MU_LO, hi: float = MU_HI, st
         return WheelOnset(on, math.nan, "")
     wheel = [r for r in scr.roots(at) if r.mode >= 0]
     r = max(wheel, key=lambda r: r.sigma)
-    return WheelOnset(on, float(r.f_hz), models.ctx.label(r.mode))
+    scanned = None
+    if top is not None and (on.lo if on.below else on.mu) <= top:
+        scanned = unstable_windows(lambda mu: growth(scr, mu), on, min(top, above), steps, XTOL, quiet=scr.quiet)
+    return WheelOnset(on, float(r.f_hz), models.ctx.label(r.mode), "", scanned)
 
 
 def run_time_loop(models, mu: float):

@@ -201,7 +201,7 @@ def run_curve(curve, *, progress_bar: bool = True, what_ifs: bool = True) -> dic
 
 def read_verdict(path) -> list[dict]:
     """The rows of a verdict.csv (floats, NaN for empty cells; ``squeals`` bool; ``contact_points`` int)."""
-    text = {"wheel", "screen_mode", "mode", "zeta_needed", "wav", "mu_onset", "mode_onset"}
+    text = {"wheel", "screen_mode", "mode", "zeta_needed", "wav", "mu_onset", "mu_squeal_range", "mode_onset"}
     rows = []
     with open(path, newline="", encoding="utf-8") as fh:
         for r in csv.DictReader(fh):

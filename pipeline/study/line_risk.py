@@ -10,9 +10,11 @@ applied to the wheels the screen-first verdict (``pipeline.curve.screen_first``)
   above the climate's highest friction level (``above``): an onset below it is the full scan's, bit for
   bit (same grid, same bracket); a wheel quiet up to there is '>' that level and never squeals in the
   climate (p = 0 exactly).  Another law scans the whole range.
-* p_squeal = P(mu > smallest onset of the leading bogie's wheels) (``risk.curve_risk``'s passages: one
-  friction level per passage, exact from the climate's distribution); ``axles_p_squeal`` its expected
-  share of axles (``risk.curve_risk``'s axles).
+* p_squeal = P(mu in a window of friction where a wheel of the leading bogie squeals) (``risk.curve_risk``'s
+  passages: one friction level per passage, exact from the climate's distribution; the windows from each
+  wheel's onset scan continued up to the climate's top, ``onset.wheel_onset``'s ``top``: a wheel can be
+  stable again above a window, e.g. the outer leading wheel at R = 330 m from mu ~ 0.27 up); their union
+  as ``mu_squeal_range``; ``axles_p_squeal`` the expected share of axles.
 * L_pAmax_7m5: the loudest wheel's median L_pA at 7.5 m when squealing (``risk.median_level``) from the
   time loop at the curve stage's levels above onset (``onset.LEVEL_STEPS``), the levels past the first
   one at or above the climate's highest level dropped (the median reads the table up to that level only,
@@ -29,14 +31,13 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-import numpy as np
-
 from pipeline.config.case import given
 from pipeline.config.climate import CLIMATES, climate_file, load_climate
 from pipeline.config.loader import ConfigError
 from pipeline.curve import risk
+from pipeline.curve.risk import highest, top_level
 from pipeline.curve.cases import wheel_case
-from pipeline.curve.onset import LEVEL_STEPS, MU_HI, MU_LO, MU_STEPS, level_table, wheel_onset
+from pipeline.curve.onset import LEVEL_STEPS, level_table, range_text, wheel_onset
 from pipeline.curve.stage import solve
 from pipeline.curve.train import REF_DISTANCE, passby
 from pipeline.curve.what_ifs import CaseModels
@@ -44,10 +45,10 @@ from pipeline.store import paths
 from solvers.radiation.squeal_excess import climate_excess
 
 NAN = float("nan")
-COLUMNS = {"climate": str, "mu_onset": str, "wheel_onset": str, "f_onset": float, "mode_onset": str,
+COLUMNS = {"climate": str, "mu_onset": str, "mu_squeal_range": str, "wheel_onset": str, "f_onset": float, "mode_onset": str,
            "p_squeal": float, "axles_p_squeal": float, "L_pAmax_7m5": float, "L_pAmax_rolling": float,
            "L_pAeq_rolling": float, "dL_squeal": float}
-EMPTY = {"climate": "", "mu_onset": "", "wheel_onset": "", "f_onset": NAN, "mode_onset": "", "p_squeal": NAN,
+EMPTY = {"climate": "", "mu_onset": "", "mu_squeal_range": "", "wheel_onset": "", "f_onset": NAN, "mode_onset": "", "p_squeal": NAN,
          "axles_p_squeal": NAN, "L_pAmax_7m5": NAN, "L_pAmax_rolling": NAN, "L_pAeq_rolling": NAN,
          "dL_squeal": NAN}
 
@@ -77,18 +78,6 @@ def line_climate(spec: dict):
     return load_climate(climate_path(spec))
 
 
-def top_level(climate) -> float:
-    """The first level of the onset scan's grid at or above the climate's highest friction level (inf
-    when the climate reaches past the scanned range)."""
-    grid = np.linspace(MU_LO, MU_HI, MU_STEPS + 1)
-    return next((float(g) for g in grid if g >= highest(climate) - 1e-12), math.inf)
-
-
-def highest(climate) -> float:
-    """The climate's highest friction level."""
-    return max(c.hi for c in climate.conditions)
-
-
 def level_steps(mu_on: float, top: float) -> tuple:
     """The curve stage's levels above onset, cut after the first one at or above ``top``, the climate's
     highest level (module notes)."""
@@ -105,10 +94,15 @@ def wheel_risk(climate, top: float, case: str, ctx, gamma_y: float) -> tuple:
     if ctx is None:
         return wheel_onset(None, 0.0), []
     models = CaseModels.of_context(ctx)
-    on = wheel_onset(models, gamma_y, above=top if models.coulomb else math.inf)
-    if not (math.isfinite(on.mu) and risk.p_exceed(climate, on.mu) > 0.0):
+    on = wheel_onset(models, gamma_y, above=top if models.coulomb else math.inf, top=top)
+    if not (math.isfinite(on.mu) and risk.p_windows(climate, on.windows) > 0.0):
         return on, []
     return on, level_table(models, case, on, steps=level_steps(on.mu, highest(climate)))
+
+
+def windows(on) -> "tuple | float":
+    """A wheel's onset as ``risk.curve_risk`` takes it: its windows, or NaN when not computed."""
+    return on.windows if math.isfinite(on.mu) else on.mu
 
 
 def risk_columns(curve, rows: list[dict]) -> dict:
@@ -124,14 +118,16 @@ def risk_columns(curve, rows: list[dict]) -> dict:
             on, table = wheel_risk(climate, top, f"{sol.curve.name}/{p.wheel}", by[p.wheel].get("context"),
                                    p.gamma_y)
             onsets[p.wheel] = on
-            levels[p.wheel] = risk.wheel_risk(climate, on.mu, table)["L_pAmax_7m5"]
-    shares = risk.curve_risk(climate, {w: on.mu for w, on in onsets.items()})
+            levels[p.wheel] = risk.wheel_risk(climate, windows(on), table)["L_pAmax_7m5"]
+    shares = risk.curve_risk(climate, {w: windows(on) for w, on in onsets.items()})
     known = {w: on for w, on in onsets.items() if not math.isnan(on.mu)}
     worst = min(known, key=lambda w: known[w].mu) if known else ""
     loud = max((v for v in levels.values() if math.isfinite(v)), default=NAN)
     roll = passby(curve, [], 0.0, [REF_DISTANCE])[0]      # no squeal source: the wheel height is not used
     p = shares["passages"]
-    return {"climate": climate.name, "mu_onset": onsets[worst].cell() if worst else "", "wheel_onset": worst,
+    ranges = risk.union(x for w in known for x in known[w].windows)
+    return {"climate": climate.name, "mu_onset": onsets[worst].cell() if worst else "",
+            "mu_squeal_range": range_text(ranges), "wheel_onset": worst,
             "f_onset": onsets[worst].f_hz if worst else NAN, "mode_onset": onsets[worst].mode if worst else "",
             "p_squeal": p, "axles_p_squeal": shares["axles"], "L_pAmax_7m5": loud,
             "L_pAmax_rolling": roll["L_pAmax_rolling"], "L_pAeq_rolling": roll["L_pAeq_rolling"],

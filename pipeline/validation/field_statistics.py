@@ -38,7 +38,8 @@ import numpy as np
 
 from pipeline.config.climate import climate_file, load_climate
 from pipeline.config.curve_inputs import read_curve
-from pipeline.curve.risk import curve_risk, median_level, p_exceed
+from pipeline.curve.onset import range_text, range_windows
+from pipeline.curve.risk import curve_risk, median_level, union, wheel_risk
 from pipeline.store import paths
 from pipeline.study.line_rules import cnossos_penalty, schall03_penalty
 from pipeline.study.radius import curve_verdict
@@ -112,16 +113,18 @@ def level_rows(curve: str, wheel: str) -> list[dict]:
 def curve_row(label: str, name: str, R: float, V: float, cant: float, rows: list[dict], climates: dict) -> dict:
     """One row of the study (module notes) from a curve's verdict rows."""
     mus = {r["wheel"]: onset_value(r["mu_onset"]) for r in rows}
+    wins = {r["wheel"]: range_windows(r["mu_squeal_range"]) if math.isfinite(mus[r["wheel"]]) else mus[r["wheel"]]
+            for r in rows}                                  # where each wheel squeals (risk.curve_risk's windows)
     first = min(rows, key=lambda r: mus[r["wheel"]] if not math.isnan(mus[r["wheel"]]) else math.inf)
     mu_on = mus[first["wheel"]]
     tables = {w: level_rows(name, w) for w in mus}
-    p = curve_risk(climates[CLIMATE], mus)["passages"]
+    p = curve_risk(climates[CLIMATE], wins)["passages"]
     L_roll = float(rows[0]["L_pAmax_rolling"])
     L_sq = max((r["L_pAmax_7m5"] for r in rows if math.isfinite(r["L_pAmax_7m5"])), default=math.nan)
     when = climate_excess(L_roll, L_sq, 1.0)
     fm = climates[MODIFIER]
-    p_fm = curve_risk(fm, mus)["passages"]
-    L_fm = max((median_level(fm, mus[w], tables[w]) for w in mus), key=lambda x: x if math.isfinite(x) else -1e9,
+    p_fm = curve_risk(fm, wins)["passages"]
+    L_fm = max((median_level(fm, wins[w], tables[w]) for w in mus), key=lambda x: x if math.isfinite(x) else -1e9,
                default=math.nan)
     top = max(c.hi for c in climates[CLIMATE].conditions)      # the climate's highest friction level
     f_sq = sorted({round(t["f"]) for w in tables if mus[w] < top for t in tables[w] if t["squeals"] and math.isfinite(t["f"])
@@ -131,9 +134,10 @@ def curve_row(label: str, name: str, R: float, V: float, cant: float, rows: list
                key=lambda t: t["L_pA"], default={"L_pA": math.nan, "mu": math.nan, "f": math.nan})
     dL_fm = climate_excess(L_roll, L_fm, p_fm if math.isfinite(p_fm) else 0.0)
     return {"vehicle": label, "curve": name, "R": R, "V": V, "cant_mm": 1e3 * cant, "class": radius_class(R),
-            "mu_onset": mu_on, "wheel_onset": first["wheel"], "mode_onset": first["mode_onset"] or "-",
-            "f_onset": float(first["f_onset"]), "p": p, "p_wheels": {w: p_exceed(climates[CLIMATE], m)
-                                                                       for w, m in mus.items()},
+            "mu_onset": mu_on, "squeal_range": range_text(union(x for v in wins.values() if isinstance(v, tuple) for x in v)),
+            "wheel_onset": first["wheel"], "mode_onset": first["mode_onset"] or "-",
+            "f_onset": float(first["f_onset"]), "p": p, "p_wheels": {w: wheel_risk(climates[CLIMATE], m, [])["p_squeal"]
+                                                                       for w, m in wins.items()},
             "L_sq": L_sq, "L_roll": L_roll, "L_train": db_sum(L_roll, L_sq) if math.isfinite(L_sq) else math.nan,
             "dL": dL, "dL_when": when if math.isfinite(L_sq) else math.nan, "f_squeal": f_sq,
             "p_fm": p_fm, "dL_fm": dL_fm, "fm_reduction": (when if p_fm == 0.0 else dL - dL_fm) if p > 0.0 else math.nan,

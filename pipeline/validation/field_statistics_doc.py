@@ -25,7 +25,8 @@ from pipeline.validation.writers import DOCS, pyplot, save_figure, save_fragment
 
 FRAGMENT = "96_field_statistics.md"
 ROWS_CSV = "96_field_statistics.csv"
-CSV_KEYS = ["vehicle", "curve", "R", "V", "cant_mm", "class", "mu_onset", "wheel_onset", "mode_onset", "f_onset",
+CSV_KEYS = ["vehicle", "curve", "R", "V", "cant_mm", "class", "mu_onset", "squeal_range", "wheel_onset", "mode_onset",
+            "f_onset",
             "p", "L_sq", "L_roll", "L_train", "dL", "dL_when", "f_squeal", "p_fm", "dL_fm", "cnossos_dB",
             "schall03_dB", "schall03_tram_dB", "fm_reduction", "L_peak", "mu_peak", "f_peak",
             "gx_a1i", "gy_a1i"]
@@ -65,7 +66,7 @@ def read_rows(path=None) -> list[dict]:
             for k, v in r.items():
                 if k == "f_squeal":
                     r[k] = json.loads(v)
-                elif k not in ("vehicle", "curve", "class", "wheel_onset", "mode_onset"):
+                elif k not in ("vehicle", "curve", "class", "squeal_range", "wheel_onset", "mode_onset"):
                     r[k] = float(v)
             out.append(r)
     return out

@@ -69,6 +69,34 @@ def find_onset(growth: Callable[[float], float], lo: float = 0.1, hi: float = 0.
     return Onset(math.nan, False, lo, hi, grid[1] - grid[0], calls[0])
 
 
+def unstable_windows(growth: Callable[[float], float], onset: Onset, top: float, n: int, xtol: float = 1e-3,
+                     quiet: Callable[[float], bool] | None = None) -> tuple:
+    """The friction levels from ``onset`` up to ``top`` where ``growth`` > 0, as intervals (a, b), b = inf
+    when it still grows at the last level of the scan's grid at or below ``top``: the onset's grid
+    (``n`` steps on [onset.lo, onset.hi]) continued upwards, brentq at each sign change, ``quiet`` as in
+    ``find_onset``.  A curve can squeal in a window of friction only (stable again above it): the
+    probability of squeal is then the climate's share of the windows, not of everything above the onset."""
+    start = onset.lo if onset.below else onset.mu
+    if not math.isfinite(start):
+        return ()
+    g = lambda mu: float(growth(float(mu)))                                     # noqa: E731
+    level = lambda mu: -math.inf if quiet is not None and quiet(float(mu)) else g(mu)   # noqa: E731
+    grid = np.linspace(onset.lo, onset.hi, int(n) + 1)
+    out, a, growing = [], start, True
+    prev_x, prev_v = start, g(start) if onset.below else math.inf      # growing just above the onset
+    for x in grid[(grid > start) & (grid <= top + 1e-9)]:
+        v = level(x)
+        if growing and v <= 0:
+            out.append((a, float(brentq(g, prev_x, x, xtol=xtol))))
+            growing = False
+        elif not growing and v > 0:
+            a, growing = (float(brentq(g, prev_x, x, xtol=xtol)) if prev_v < 0 else float(prev_x)), True
+        prev_x, prev_v = float(x), v
+    if growing:
+        out.append((a, math.inf))
+    return tuple(out)
+
+
 def exceedance(x: float, shares, lo, hi, mean=None, sd=None) -> float:
     """P(mu > x) for a mixture of conditions (module notes): ``shares`` (sum 1), each on [lo, hi];
     ``mean``/``sd`` NaN (or None) for a uniform condition, else its truncated normal's parameters."""

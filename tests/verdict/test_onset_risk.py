@@ -15,7 +15,7 @@ import pytest
 
 from pipeline.config.climate import load_climate
 from pipeline.curve import risk
-from solvers.stability.onset import exceedance, find_onset, weighted_median
+from solvers.stability.onset import exceedance, find_onset, unstable_windows, weighted_median
 
 UNIFORM = """name = "u2"
 [[condition]]
@@ -59,6 +59,20 @@ def test_find_onset_quiet_levels_skip_growth():
     assert fast.mu == full.mu and fast.evaluations < full.evaluations
     assert min(asked) == pytest.approx(0.3) and 0.1 not in asked and 0.2 not in asked
     assert find_onset(lambda mu: -1.0 - mu, 0.1, 0.8, quiet=lambda mu: True).text() == ">0.8"
+
+
+def test_unstable_windows_of_two_humps():
+    """Growing on (0.3137, 0.45) and again above 0.6: both windows, the second open; cut at a top level;
+    a monotonic growth's single window is (onset, inf) with the onset's own bits."""
+    g = lambda mu: (mu - 0.3137) * 100 if mu < 0.45 else (mu - 0.6) * 50   # noqa: E731
+    on = find_onset(g, 0.1, 0.8, 7, xtol=1e-6)
+    (a1, b1), (a2, b2) = unstable_windows(g, on, 0.8, 7, xtol=1e-6, quiet=lambda mu: g(mu) <= 0)
+    assert (a1, b2) == (on.mu, math.inf) and b1 == pytest.approx(0.45, abs=1e-5) and a2 == pytest.approx(0.6, abs=1e-5)
+    assert unstable_windows(g, on, 0.5, 7, xtol=1e-6) == ((on.mu, b1),)
+    mono = find_onset(lambda mu: mu - 0.33, 0.1, 0.8, 7)
+    assert unstable_windows(lambda mu: mu - 0.33, mono, 0.8, 7) == ((mono.mu, math.inf),)
+    assert unstable_windows(lambda mu: 1.0, find_onset(lambda mu: 1.0, 0.1, 0.8, 7), 0.8, 7) == ((0.1, math.inf),)
+    assert unstable_windows(lambda mu: -1.0, find_onset(lambda mu: -1.0, 0.1, 0.8, 7), 0.8, 7) == ()
 
 
 def test_exceedance_uniform_closed_form(tmp_path):
