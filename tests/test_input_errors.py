@@ -2,7 +2,7 @@
 
 * a vehicle naming a wheel file that is not there: Make stopped with its own `No rule to make target
   'geometry/wheels/c21.toml'`; `make check CURVE=` did not look at the curve at all;
-* a vehicle whose `name` is not its file's name was accepted silently;
+* a vehicle whose `name` is not its file's name was accepted silently (a study's too, issue 32's session 15);
 * a missing wheel, rail, vehicle or profile file was named without the file and key that asked for it;
 * `make study STUDY=<no such study>` printed a stray `sed: can't read ...` first;
 * a refused study left an empty output folder holding a `.lock`.
@@ -88,6 +88,20 @@ def test_vehicle_named_unlike_its_file_is_refused_in_python(tmp_path):
         read_vehicle("misnamed", beside=tmp_path)          # a user's vehicle beside their curve file
     assert "misnamed.toml" in str(e.value) and "name = 'c20_metro_copy'" in str(e.value)
     assert len(str(e.value).splitlines()) == 1
+
+
+@pytest.mark.parametrize("goal", ["check", "study"])
+def test_study_named_unlike_its_file_is_refused(tree, goal):
+    """A copy of the example line under another file name: one line naming the copy, `name` and the file's name,
+    before any work (no build/studies/ folder)."""
+    studies = tree / "pipeline" / "studies"
+    (studies / "bad_line.toml").write_text((studies / "metro_line.toml").read_text())
+    r = make(tree, goal, "STUDY=bad_line")
+    assert r.returncode != 0
+    err = [ln for ln in lines(r.stderr) if not ln.startswith("make: ***")]     # Make's own 'Error 2' aside
+    assert len(err) == 1 and "bad_line.toml: " in err[0] and "name = 'metro_line'" in err[0], r.stderr
+    assert "'bad_line'" in err[0], err[0]
+    assert not (tree / "build" / "studies").exists()
 
 
 def _cli(env: dict, *args) -> subprocess.CompletedProcess:

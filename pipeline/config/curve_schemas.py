@@ -19,6 +19,9 @@ VEHICLE = {
     "wheel_profile": Field(str, default=None,
                            doc="running-surface profile geometry/profiles/<name>.csv (default: the wheel file's "
                                "running_surface.profile)"),
+    "category": Field(str, choices=["railway", "tram"], default="railway",
+                      doc="which part of Schall 03 (16. BImSchV Anlage 2) rates its curves: railway (section 4.9, "
+                          "K_L 8 dB r < 300 m, 3 dB to < 500 m) or tram (section 5.3.2: 4 dB r < 200 m)"),
     "bogie": {
         "wheelbase_m": Field(float, unit="m", min=1.0, max=4.0, doc="distance between the bogie's two axles"),
         "bogie_spacing_m": Field(float, unit="m", min=3.0, max=30.0, doc="distance between the car's bogie centres"),

@@ -17,6 +17,8 @@ from pipeline.store.atomic import save_figure, save_text
 from pipeline.curve.verdict_report import cell
 from pipeline.study.line_html import write_page
 from pipeline.study import line_classes, line_risk
+from pipeline.config.curve_inputs import read_vehicle
+from pipeline.study.line_input import curves_file
 
 OUT_COLUMNS = ["id", "chainage_m", "radius_m", "cant_mm", "length_m", "speed_kmh", "vehicle", "friction", "mu",
                "squeals", "wheel", "f_squeal", "mode", "L_pA", "L_W", "L_F2", "squealing_wheels", "unstable_wheels",
@@ -28,12 +30,19 @@ def _f(x, fmt=".1f") -> str:
     return "-" if x is None or (isinstance(x, float) and not math.isfinite(x)) else f"{x:{fmt}}"
 
 
-def full_rows(done: list[dict]) -> list[dict]:
+def categories(spec: dict, done: list[dict]) -> dict[str, str]:
+    """{vehicle: its file's ``category``} (railway or tram: Schall 03's rule) of the rows' vehicles, looked up
+    beside the line's CSV first as the rows' curves were."""
+    beside = curves_file(spec).parent
+    return {v: read_vehicle(v, beside).data["category"] for v in sorted({r["vehicle"] for r in done})}
+
+
+def full_rows(done: list[dict], category: dict | None = None) -> list[dict]:
     """The finished rows with the rules' columns (a row without a verdict, its ``note`` set: the rules'
-    penalties, compared with nothing)."""
+    penalties, compared with nothing); ``category``: {vehicle: railway or tram} (default railway)."""
     out = []
     for r in done:
-        cols = rule_columns(r["radius_m"], bool(r["squeals"]))
+        cols = rule_columns(r["radius_m"], bool(r["squeals"]), (category or {}).get(r["vehicle"], "railway"))
         if r.get("note"):
             cols = {k: (v if k.endswith("_dB") else "not computed") for k, v in cols.items()}
         out.append(r | cols)
@@ -136,7 +145,8 @@ def markdown(spec: dict, src: str, quick: bool, every: list[dict], total: int, n
 
 
 def write_outputs(spec: dict, src: str, out: Path, quick: bool, line_rows, done) -> None:
-    every = full_rows([line_risk.EMPTY | r for r in done if r is not None])    # rows without the climate's: blank
+    done = [line_risk.EMPTY | r for r in done if r is not None]     # rows without the climate's: blank
+    every = full_rows(done, categories(spec, done))
     rows = [r for r in every if not r.get("note")]
     cols = OUT_COLUMNS + list(line_risk.COLUMNS) + band_columns()   # the climate's columns (issue 32)
     save_csv(out / "line.csv", cols, ([cell(r[c]) if not isinstance(r[c], int) else r[c] for c in cols]

@@ -41,7 +41,7 @@ from pipeline.config.curve_inputs import read_curve
 from pipeline.curve.onset import range_text, range_windows
 from pipeline.curve.risk import curve_risk, median_level, union, wheel_risk
 from pipeline.store import paths
-from pipeline.study.line_rules import cnossos_penalty, schall03_penalty
+from pipeline.study.line_rules import cnossos_penalty, schall03_penalty, schall03_tram
 from pipeline.study.radius import curve_verdict
 from pipeline.validation.make import make_targets
 from pipeline.validation.onset_radius import COLUMNS as CHECK_COLUMNS, check_curve
@@ -75,12 +75,6 @@ TRAM_EXCEPTIONS = {
                    "onset lies below 0.08; the check's 'below' point is not below the onset",
 }
 TOL_DB = 3.0                       # dB: a model class mean 'agrees' with STUVA's within this (stated, not fitted)
-
-
-def schall03_tram(radius_m: float) -> float:
-    """Schall 03's tram penalty (dB): K = 4 dB on the rolling noise in curves r < 200 m without effective
-    mitigation (16. BImSchV Anlage 2, 2014, section 5.3.2, Anmerkung 1), 0 dB otherwise."""
-    return 4.0 if radius_m < 200.0 else 0.0
 
 
 def radius_class(radius_m: float) -> str:

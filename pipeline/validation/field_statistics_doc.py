@@ -20,7 +20,7 @@ import numpy as np
 from pipeline.config.climate import climate_file, load_climate
 from pipeline.store import paths
 from pipeline.store.atomic import save_text
-from pipeline.validation import field_statistics as fs
+from pipeline.validation import field_line, field_statistics as fs
 from pipeline.validation.writers import DOCS, pyplot, save_figure, save_fragment
 
 FRAGMENT = "96_field_statistics.md"
@@ -370,7 +370,8 @@ def main(argv=None) -> int:
     table, head = comparison(rows, max(c.hi for c in climate.conditions))
     save_rows(rows)
     figures(rows, climate)
-    save_fragment(FRAGMENT, page(rows, table, head, climate, time.perf_counter() - t0, check))
+    save_fragment(FRAGMENT, page(rows, table, head, climate, time.perf_counter() - t0, check)
+                  + field_line.section(rows))        # the example line (pipeline/validation/field_line.py)
     print(f"wrote docs/validation/{FRAGMENT} ({len(rows)} curves, {time.perf_counter() - t0:.0f} s)")
     return 0
 

@@ -35,6 +35,10 @@ def load_study(name: str) -> tuple[dict, str]:
     if kind not in NAMES:
         load(path, COMMON)                           # the syntax error, or the key and the kinds, named
     spec = load(path, kind_module(kind).SCHEMA)
+    if spec["name"] != path.stem:                   # as a vehicle (curve_inputs.vehicle_of): named by its file
+        raise ConfigError(str(path), [("name", spec["name"], f"the file's name {path.stem!r} (a study is named by "
+                                       "its file, its results land in build/studies/<name>/: rename one to match "
+                                       "the other)")])
     for case in spec.get("cases", []):              # a line study names curves instead (kinds/line.py)
         if not paths.case_file(case).exists():
             raise ConfigError(str(path), [("cases", case, f"a case in {paths.cases()}: "
