@@ -28,6 +28,7 @@ import numpy as np
 
 from pipeline.config.climate import climate_file, load_climate
 from pipeline.config.curve_inputs import read_vehicle
+from pipeline.curve.onset import range_windows
 from pipeline.curve.risk import curve_risk
 from pipeline.store import paths
 from pipeline.store.atomic import save_text
@@ -43,9 +44,10 @@ HEADING = "## The example line against the field's statistics"
 ROWS_CSV = "96_field_line.csv"
 FIGURE = "field_line_onset.png"
 KEYS = ["id", "vehicle", "friction", "radius_m", "speed_kmh", "mu", "squeals", "time_loop_wheels", "mu_onset",
-        "wheel_onset", "f_onset", "mode_onset", "p_squeal", "axles_p_squeal", "L_pAmax_7m5", "L_pAmax_rolling",
+        "mu_squeal_range", "wheel_onset", "f_onset", "mode_onset", "p_squeal", "axles_p_squeal", "L_pAmax_7m5", "L_pAmax_rolling",
         "dL_squeal", "f_squeal", "cnossos_dB", "schall03_dB", "note"]
-TEXT = ("id", "vehicle", "friction", "time_loop_wheels", "mu_onset", "wheel_onset", "mode_onset", "note")
+TEXT = ("id", "vehicle", "friction", "time_loop_wheels", "mu_onset", "mu_squeal_range", "wheel_onset", "mode_onset",
+        "note")
 LABELS = [c for c, _, _ in fs.CLASSES]
 
 
@@ -62,6 +64,7 @@ def parse(text_rows) -> list[dict]:
     int, ``onset`` the onset as a number (``field_statistics.onset_value``) and the row's radius class."""
     out = []
     for r in text_rows:
+        r = {"mu_squeal_range": ""} | r             # rows written before the windows: the onset's own
         row = {k: (r[k] if k in TEXT else (int(r[k]) if k == "squeals" else float(r[k] or "nan"))) for k in KEYS}
         row["onset"] = fs.onset_value(row["mu_onset"])
         row["class"] = fs.radius_class(row["radius_m"])
@@ -124,12 +127,17 @@ def class_stats(rows: list[dict]) -> dict:
     return out
 
 
+def squeal_windows(r: dict):
+    """A row's windows of friction where the bogie squeals (``risk.curve_risk``'s input; NaN/inf: none known)."""
+    if not math.isfinite(r["onset"]):
+        return r["onset"]
+    return range_windows(r["mu_squeal_range"]) if r["mu_squeal_range"] else ((r["onset"], math.inf),)
+
+
 def windows(rows: list[dict]) -> list[dict]:
-    """Rows whose onset lies below their own friction while the row is quiet at it: an instability window
-    in friction (the onset scan finds the wheel unstable low, the screen or the time loop not at the row's
-    mu), where the onset-based p_squeal overstates."""
-    return [r for r in rows if not r["note"] and math.isfinite(r["onset"]) and r["onset"] < r["mu"]
-            and not r["squeals"]]
+    """Rows whose wheels squeal in a window of friction only (``mu_squeal_range`` closes below the climate's
+    top: the onset scan finds them stable again above it); their p_squeal is the climate's share of the window."""
+    return [r for r in rows if not r["note"] and any(math.isfinite(b) for _, b in range_windows(r["mu_squeal_range"]))]
 
 
 def state_bound(rows: list[dict]) -> list[tuple[dict, dict]]:
@@ -143,10 +151,8 @@ def state_bound(rows: list[dict]) -> list[tuple[dict, dict]]:
 
 
 def window_text(ws: list[dict]) -> str:
-    return "; ".join(f"R = {r['radius_m']:g} m {r['friction']} ({r['wheel_onset']} onset {r['mu_onset']} below "
-                     f"its mu = {r['mu']:g}, " + ("its time loop quiet there" if r["wheel_onset"] in
-                                                   r["time_loop_wheels"].split() else "the screen stable there") + ")"
-                     for r in ws)
+    return "; ".join(f"R = {r['radius_m']:g} m {r['friction']} (squeals for mu in {r['mu_squeal_range']}, "
+                     + ("quiet" if not r["squeals"] else "squealing") + f" at its own mu = {r['mu']:g})" for r in ws)
 
 
 def f(x, spec=".1f") -> str:
@@ -170,8 +176,7 @@ def comparison(rows: list[dict], stats: dict, category: str, fm) -> str:
         oks = [ok(stats[(c, k)]) if (c, k) in stats else None for k in conds]
         w = [r for r in win if r["class"] == c]
         mech += ("" if not w or key not in ("p", "dL", "cnossos", "schall03") else
-                 f" Instability window: {window_text(w)}; p_squeal counts these as squealing above the onset, "
-                 "so the class's p overstates and the verdict rests on it.")
+                 f" Instability window: {window_text(w)}; p_squeal counts the climate's share of the window only.")
         t.append(f"| {stat} | {c} | {field} | " + " | ".join(vals) + " | " + " / ".join(verdict(o) for o in oks)
                  + f" | {mech} |")
 
@@ -221,7 +226,7 @@ def comparison(rows: list[dict], stats: dict, category: str, fm) -> str:
              "wheel's own axial modes ((2,0,a) about 435 Hz, (3,0,a) about 1.15 kHz), not the TEMA vehicle's "
              "radial mode. |")
     fm_conds = [k for k in conds if re.search(r"fm|modifier", k, re.I)]
-    p_fm = {c: float(np.mean([curve_risk(fm, {"w": r["onset"]})["passages"] for r in rows
+    p_fm = {c: float(np.mean([curve_risk(fm, {"w": squeal_windows(r)})["passages"] for r in rows
                               if r["class"] == c and not r["note"]])) for c in present}
     lo_r, hi_r, mean_r = fs.FM_RANGE
     t.append(f"| line: friction-modifier reduction | all | {lo_r:g}-{hi_r:g} dB(A), mean {mean_r:g} (Eadie & "
@@ -336,11 +341,10 @@ class numbers recomputed by `tests/verdict/test_field_line.py`; Schall 03 by the
 
 {comparison(rows, stats, category, fm)}
 
-**Instability windows.** {len(win)} rows have their onset below their own friction yet are quiet at it:
-{window_text(win) or 'none'}. There the onset scan finds the wheel unstable at low friction while the screen-first
-verdict at the row's mu is quiet: the friction range of instability is a window, not everything above the onset,
-so the onset-based p_squeal (P(mu > onset)) overstates the share of squealing passages in those classes (numbers
-as computed; the onset scan is being revised).
+**Instability windows.** {len(win)} rows squeal in a window of friction only: {window_text(win) or 'none'}. There
+the onset scan, continued up to the climate's highest level, finds the wheel unstable at low friction and stable
+again above the window (a growth rate of a few 1/s at most), and the row's p_squeal is the climate's share of the
+window, not of everything above the onset (docs/friction_climate.md, section 6).
 
 **Dry rows against wet rows.** Each row's onset is scanned on its own steady curving state, solved at its own
 friction (dry {dry_mu}, wet {wet_mu}). {len(bound)} rows have their onset below the friction of the same curve's other row, where
