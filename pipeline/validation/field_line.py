@@ -195,8 +195,8 @@ def comparison(rows: list[dict], stats: dict, category: str, fm) -> str:
             "no squeal above 300 m (JRC)" if c in ("301-500", ">500") else "trams none above 200 m; other vehicles "
             "sporadic (Thompson 2009)" if c == "201-300" else "squeal occurs (STUVA's class means > 0)", "p",
             lambda s: None if expect is None else (s["p"] == 0.0) == expect,
-            f"onsets below the climate's highest level {top:g}: {onsets}. p = P(mu > onset) over the climate, 0 "
-            "where every onset lies above it; a row's onset holds for its own steady curving (solved at its mu).")
+            f"onsets below the climate's highest level {top:g}: {onsets}. p = P(mu in a window where a wheel "
+            "squeals: from its onset, up to where it is stable again) over the climate, 0 where every onset lies above it; a row's onset holds for its own steady curving (solved at its mu).")
         row("line: share of axles that squeal", c, "-", "axles", lambda s: None,
             "the leading bogie's axles (axles_p_squeal): the field reports passages, not axles.")
     for c in present:
@@ -289,7 +289,7 @@ def figure(rows: list[dict], radius_rows: list[dict]) -> None:
         w = [r for r in windows(rows) if r["friction"] == cond]
         if w:
             ax.plot([r["radius_m"] for r in w], [r["onset"] for r in w], "kx", ms=9,
-                    label=None if cond != "dry" else "onset below the row's own mu, row quiet (window)")
+                    label=None if cond != "dry" else "a window: stable again above it (mu_squeal_range)")
     ax.set_xlabel("curve radius (m)")
     ax.set_ylabel("onset friction (Coulomb mu)")
     ticks = [25, 50, 100, 200, 300, 500]
