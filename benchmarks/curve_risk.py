@@ -46,6 +46,7 @@ def _run(repo: Path, curve: Path) -> tuple[float, float]:
 
 
 def run() -> str:
+    load = os.getloadavg()
     new = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
                          check=True).stdout.strip()
     subprocess.run(["make", "-s", "--no-print-directory", "modes", "rail"], cwd=ROOT, check=True)
@@ -83,4 +84,7 @@ each; target under 30 s on 2 cores.
 {table}
 
 Current / previous, wall at best: {best['current']:.1f} / {best['previous']:.1f} s
-({best['previous'] / best['current']:.2f}x)."""
+({best['previous'] / best['current']:.2f}x); load average {load[0]:.1f} at the start, {os.getloadavg()[0]:.1f} at the end
+(the stage runs on one core: its wall time is about its CPU time on an idle machine).  Since {OLD} the onset scan
+passes a level where no pole grows on the argument principle's count alone, and goes on above the onset up to the
+climate's highest level for the windows of friction where a wheel squeals (more work, in less time)."""
