@@ -16,6 +16,9 @@ CORE   ?= $(dir $(STAMP)).core-stamp
 RENDER ?= $(dir $(STAMP)).render-stamp
 # pipeline/store/deps.py uses the standard library only: it runs before the venv exists
 DEPS_PY := $(firstword $(wildcard $(PY)) /usr/bin/python3)
+# a minimal Debian 12 has no python3 before the Debian packages: the input checks below then wait for
+# Make's restart after $(DEPS_MK), whose rule installs the packages first (.apt-stamp)
+NO_PY := $(if $(wildcard $(DEPS_PY)),,1)
 # a case is a file pipeline/cases/<CASE>.toml, or a curve's wheel CASE=<curve>/<wheel> (e.g. r150/a1i), whose
 # case file the curve stage writes to $(BUILD)/curves/<curve>/cases/<wheel>.toml (artifacts in $(BUILD)/cases/<curve>/<wheel>/)
 CURVE_OF = $(if $(findstring /,$(1)),$(firstword $(subst /, ,$(1))))
@@ -23,12 +26,12 @@ CASE_FILE = $(if $(findstring /,$(1)),$(BUILD)/curves/$(call CURVE_OF,$(1))/case
 CFILE := $(call CASE_FILE,$(CASE))
 # the wheel and rail come from the case file (its keys `wheel`, `rail`): WHEEL=/RAIL= only for
 # the wheel and rail stages alone, and an error when they disagree with a case target's case
-CASE_INPUTS := $(shell $(DEPS_PY) pipeline/store/deps.py --case $(CFILE) 2>&1)
+CASE_INPUTS := $(if $(NO_PY),,$(shell $(DEPS_PY) pipeline/store/deps.py --case $(CFILE) 2>&1))
 CASE_OK     := $(filter 0,$(.SHELLSTATUS))
 WHEEL ?= $(if $(CASE_OK),$(word 1,$(CASE_INPUTS)),c20)
 RAIL  ?= $(if $(CASE_OK),$(word 2,$(CASE_INPUTS)),bv50)
 CASE_GOALS := all contact greens simulate radiate stability listen report study stability-map
-ifneq ($(filter $(CASE_GOALS) $(BUILD)/cases/% $(BUILD)/report/%,$(or $(MAKECMDGOALS),all)),)
+ifneq ($(if $(NO_PY),,$(filter $(CASE_GOALS) $(BUILD)/cases/% $(BUILD)/report/%,$(or $(MAKECMDGOALS),all))),)
   ifeq ($(CASE_OK),)
     $(error CASE=$(CASE): $(CASE_INPUTS))
   endif
@@ -63,7 +66,7 @@ PKG_PY   := $(filter-out tests/% benchmarks/%,$(wildcard */*.py */*/*.py */*/*/*
 ifeq ($(filter clean distclean help,$(MAKECMDGOALS)),)
 include $(DEPS_MK)
 endif
-$(DEPS_MK): $(PKG_PY)
+$(DEPS_MK): $(PKG_PY) | .apt-stamp
 	@mkdir -p $(@D)
 	$(DEPS_PY) pipeline/store/deps.py > $@.tmp && mv $@.tmp $@ || { rm -f $@.tmp; exit 1; }
 
@@ -102,7 +105,7 @@ help: ## list the targets
 	if [ -n "$$missing" ]; then \
 	  echo "installing Debian packages: $$missing"; \
 	  SUDO=$$( [ "$$(id -u)" = 0 ] || echo sudo ); \
-	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq $$missing; \
+	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq --no-install-recommends $$missing; \
 	fi
 	@touch $@
 
@@ -238,7 +241,7 @@ CURVE_RAIL  = $(or $(call TOML_KEY,rail,$(CURVE_F)),bv50)
 # the curve's vehicle, wheel and rail files are there and the vehicle's name is its file's (pipeline/store/deps.py
 # --curve), else one line naming the file and key that asked, before any work (a missing wheel file was
 # Make's "No rule to make target")
-ifneq ($(CURVE),)
+ifneq ($(if $(NO_PY),,$(CURVE)),)
   ifneq ($(filter curve check $(BUILD)/curves/%,$(MAKECMDGOALS)),)
     CURVE_INPUTS := $(shell $(DEPS_PY) pipeline/store/deps.py --curve $(CURVE_F) 2>&1)
     ifneq ($(.SHELLSTATUS),0)
