@@ -2,8 +2,10 @@
 verdict of the shipped curve r75 and four rows of the example line (a quiet curve dry and wet, a dry
 (2,0,a) squeal, a wet (3,0,a) squeal), as recorded before the house's move (tests/reference/
 reference_results.json says how).  On a machine of the recording's signature (numba compiles for the host
-CPU) every number must be equal to the last bit; elsewhere to 1e-5 relative, the spread measured between
-CPUs of different vector width.  The quick map's mode per position is tests/study/test_mode_selection.py's.
+CPU, OpenBLAS for its kernel family) every number must be equal to the last bit; elsewhere to 1e-4 relative:
+the spread measured between CPUs of different vector width (~1e-6) and, on this CPU, between OpenBLAS's
+Haswell kernels (the recording's: OPENBLAS_CORETYPE=Haswell) and its own choice, Cooperlake, on a fresh
+Debian 12 (3e-5 at most: r75's screen growth rate 1.1e-5, a line row's 80 Hz band 3e-5).  The quick map's mode per position is tests/study/test_mode_selection.py's.
 """
 from __future__ import annotations
 
@@ -23,18 +25,31 @@ REF = json.loads((ROOT / "tests" / "reference" / "reference_results.json").read_
 LINE_ROWS = {"C01|c20_metro|dry", "C01|c20_metro|wet", "C03|c20_metro|dry", "C08|c20_metro|wet"}
 
 
+def _blas_core() -> str:
+    """The kernel family OpenBLAS runs (its own choice for the CPU, or OPENBLAS_CORETYPE's)."""
+    import ctypes
+
+    try:
+        f = ctypes.CDLL("libopenblas.so.0").openblas_get_corename
+    except (OSError, AttributeError):
+        return "unknown"
+    f.restype = ctypes.c_char_p
+    return f().decode()
+
+
 def _signature() -> dict:
     import llvmlite.binding as llvm
     import numba
 
-    return {"cpu": llvm.get_host_cpu_name(), "numba": numba.__version__, "numpy": np.__version__}
+    return {"cpu": llvm.get_host_cpu_name(), "numba": numba.__version__, "numpy": np.__version__,
+            "blas": _blas_core()}
 
 
 EXACT = _signature() == REF["signature"]
 
 
 def same(got, want, what: str) -> None:
-    """``got`` equals ``want``: to the bit on the recording's machine, else to 1e-5 relative."""
+    """``got`` equals ``want``: to the bit on the recording's machine, else to 1e-4 relative."""
     if isinstance(want, str) or want is None or isinstance(want, bool):
         assert got == want, f"{what}: {got!r} != {want!r}"
     elif math.isnan(want):
@@ -42,7 +57,7 @@ def same(got, want, what: str) -> None:
     elif EXACT:
         assert got == want, f"{what}: {got!r} != {want!r} (bit for bit on {REF['signature']})"
     else:
-        assert got == pytest.approx(want, rel=1e-5), f"{what}: {got!r} vs {want!r}"
+        assert got == pytest.approx(want, rel=1e-4), f"{what}: {got!r} vs {want!r}"
 
 
 def _make(*targets: str) -> None:
