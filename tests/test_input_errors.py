@@ -49,7 +49,7 @@ def tree(tmp_path_factory) -> Path:
 
 def make(tree: Path, *args: str) -> subprocess.CompletedProcess:
     env = {k: v for k, v in os.environ.items() if k not in ("WHEEL", "RAIL", "CASE", "CURVE", "STUDY", "MAKEFLAGS",
-                                                            "MFLAGS")}
+                                                            "MFLAGS", "MAKELEVEL")}   # a user's top-level make
     return subprocess.run(["make", "--no-print-directory", f"STAMP={tree / 'stamp'}", f"PY={sys.executable}", *args],
                           cwd=tree, env=env, capture_output=True, text=True, timeout=600)
 
