@@ -18,7 +18,6 @@ import time
 import numpy as np
 
 from pipeline.config.climate import climate_file, load_climate
-from pipeline.store import paths
 from pipeline.store.atomic import save_text
 from pipeline.validation import field_line, field_statistics as fs
 from pipeline.validation.writers import DOCS, pyplot, save_figure, save_fragment
