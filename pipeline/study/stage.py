@@ -92,6 +92,9 @@ def log_run(out: Path, record: dict) -> None:
         os.fsync(fh.fileno())
 
 
+WAIT = "SQUEAL_STUDY_WAIT"       # "1": wait for another run of the study instead of refusing (then resume it)
+
+
 def run_study(name: str, *, quick: bool = False, scheduler: str | None = None, workers: int | None = None,
               out: str | os.PathLike | None = None, progress: bool = True) -> Path:
     """Run (or resume) the study ``name``; returns the path of its summary.md."""
@@ -104,9 +107,9 @@ def run_study(name: str, *, quick: bool = False, scheduler: str | None = None, w
     t0 = time.perf_counter()
     try:
         with open(out / ".lock", "w") as lock:
-            try:                                     # one run per output folder at a time
-                fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
-            except BlockingIOError:
+            try:                                     # one run per output folder at a time; SQUEAL_STUDY_WAIT=1
+                fcntl.flock(lock, fcntl.LOCK_EX | (0 if os.environ.get(WAIT) == "1" else fcntl.LOCK_NB))
+            except BlockingIOError:                  # (make_targets: validation writers in parallel) waits
                 raise artifacts.ArtifactError(out, "another run of this study is writing here; wait for it "
                                                    "(or stop it: a rerun resumes where it stopped)") from None
             try:

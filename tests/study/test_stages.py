@@ -143,3 +143,38 @@ def test_one_run_per_output_folder(studies):
         with pytest.raises(ArtifactError, match="another run of this study"):
             study_stage.run_study("lock", workers=1, out=out, progress=False)
     assert not (out / "table.csv").exists()
+
+
+def test_a_waiting_run_goes_on_when_the_other_ends(studies, monkeypatch):
+    """SQUEAL_STUDY_WAIT=1 (validation writers asking Make for the same study at once): the second run waits
+    at the lock and then runs (here to a stub kind that says it got there), instead of being refused."""
+    import fcntl
+    import threading
+    import types
+
+    class Reached(Exception):
+        pass
+
+    def run(*args, **kwargs):
+        raise Reached
+
+    out = studies("wait", 'name = "wait"\nkind = "damping"\ncases = ["default"]\n')
+    out.mkdir(parents=True)
+    monkeypatch.setenv(study_stage.WAIT, "1")
+    monkeypatch.setattr(study_stage, "kind_module", lambda kind: types.SimpleNamespace(run=run))
+    got = []
+
+    def second():
+        try:
+            study_stage.run_study("wait", workers=1, out=out, progress=False)
+        except Reached:
+            got.append("ran")
+
+    with open(out / ".lock", "w") as held:
+        fcntl.flock(held, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        t = threading.Thread(target=second)
+        t.start()
+        t.join(1.0)
+        assert t.is_alive() and not got             # waiting at the lock
+    t.join(30.0)
+    assert got == ["ran"]
