@@ -64,6 +64,11 @@ class WheelOnset(NamedTuple):
         return range_text(self.windows)
 
     @property
+    def risk_onset(self) -> "tuple | float":
+        """What ``risk.curve_risk`` takes: the windows, or NaN when the onset was not computed."""
+        return math.nan if math.isnan(self.mu) else self.windows
+
+    @property
     def mu(self) -> float:
         """The onset as a number (the scan's lower end for '<lo', inf for '>hi', NaN if not computed)."""
         if self.onset is None:
@@ -88,6 +93,14 @@ def range_windows(text: str) -> tuple:
         a, b = part.split("-")
         out.append((float(a), float(b) if b else math.inf))
     return tuple(out)
+
+
+def cell_onset(mu: float, text: str) -> "tuple | float":
+    """``WheelOnset.risk_onset`` from a table's cells: the onset as a number and ``mu_squeal_range`` (empty in
+    a table written before the windows: the onset's own, (mu, inf))."""
+    if not math.isfinite(mu):
+        return mu
+    return range_windows(text) if text else ((mu, math.inf),)
 
 
 def law_at(law: FrictionLaw, level: float) -> FrictionLaw:
@@ -180,16 +193,13 @@ def wheel_onset(models, gamma_y: float, lo: float = MU_LO, hi: float = MU_HI, st
     scr = Screen(models)
     seen = [lo]
 
-    def visit(mu):
+    def g(mu):
         if mu > above + 1e-9:
             raise _Above
         seen.append(mu)
-
-    def g(mu):
-        visit(mu)
         return growth(scr, mu)
 
-    def quiet(mu):
+    def quiet(mu):               # a quiet level is seen here, another one by ``g`` next
         if mu > above + 1e-9:
             raise _Above
         q = scr.quiet(mu)

@@ -206,7 +206,7 @@ def add_risk(info, points, rows: list[dict], levels: bool = True) -> str:
         table = level_table(models, case, on) if levels else []
         if levels:
             save_level_table(info.name, p.wheel, table)
-        onsets[p.wheel], mus[p.wheel] = on, (on.windows if math.isfinite(on.mu) else on.mu)
+        onsets[p.wheel], mus[p.wheel] = on, on.risk_onset
         row |= ({"mu_onset": on.cell(), "f_onset": on.f_hz, "mode_onset": on.mode, "mu_squeal_range": on.range_cell()}
                 | wheel_risk(climate, mus[p.wheel], table))
     shares = curve_risk(climate, mus)

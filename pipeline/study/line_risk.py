@@ -100,11 +100,6 @@ def wheel_risk(climate, top: float, case: str, ctx, gamma_y: float) -> tuple:
     return on, level_table(models, case, on, steps=level_steps(on.mu, highest(climate)))
 
 
-def windows(on) -> "tuple | float":
-    """A wheel's onset as ``risk.curve_risk`` takes it: its windows, or NaN when not computed."""
-    return on.windows if math.isfinite(on.mu) else on.mu
-
-
 def risk_columns(curve, rows: list[dict]) -> dict:
     """The row's risk columns (``COLUMNS``) of ``curve`` whose screen-first verdict rows are ``rows`` (each
     with its screen's ``context``); call after ``run_screen_first``, in the same process."""
@@ -118,8 +113,8 @@ def risk_columns(curve, rows: list[dict]) -> dict:
             on, table = wheel_risk(climate, top, f"{sol.curve.name}/{p.wheel}", by[p.wheel].get("context"),
                                    p.gamma_y)
             onsets[p.wheel] = on
-            levels[p.wheel] = risk.wheel_risk(climate, windows(on), table)["L_pAmax_7m5"]
-    shares = risk.curve_risk(climate, {w: windows(on) for w, on in onsets.items()})
+            levels[p.wheel] = risk.wheel_risk(climate, on.risk_onset, table)["L_pAmax_7m5"]
+    shares = risk.curve_risk(climate, {w: on.risk_onset for w, on in onsets.items()})
     known = {w: on for w, on in onsets.items() if not math.isnan(on.mu)}
     worst = min(known, key=lambda w: known[w].mu) if known else ""
     loud = max((v for v in levels.values() if math.isfinite(v)), default=NAN)

@@ -28,7 +28,7 @@ import numpy as np
 
 from pipeline.config.climate import climate_file, load_climate
 from pipeline.config.curve_inputs import read_vehicle
-from pipeline.curve.onset import range_windows
+from pipeline.curve.onset import cell_onset, range_windows
 from pipeline.curve.risk import curve_risk
 from pipeline.store import paths
 from pipeline.store.atomic import save_text
@@ -127,13 +127,6 @@ def class_stats(rows: list[dict]) -> dict:
     return out
 
 
-def squeal_windows(r: dict):
-    """A row's windows of friction where the bogie squeals (``risk.curve_risk``'s input; NaN/inf: none known)."""
-    if not math.isfinite(r["onset"]):
-        return r["onset"]
-    return range_windows(r["mu_squeal_range"]) if r["mu_squeal_range"] else ((r["onset"], math.inf),)
-
-
 def windows(rows: list[dict]) -> list[dict]:
     """Rows whose wheels squeal in a window of friction only (``mu_squeal_range`` closes below the climate's
     top: the onset scan finds them stable again above it); their p_squeal is the climate's share of the window."""
@@ -226,7 +219,7 @@ def comparison(rows: list[dict], stats: dict, category: str, fm) -> str:
              "wheel's own axial modes ((2,0,a) about 435 Hz, (3,0,a) about 1.15 kHz), not the TEMA vehicle's "
              "radial mode. |")
     fm_conds = [k for k in conds if re.search(r"fm|modifier", k, re.I)]
-    p_fm = {c: float(np.mean([curve_risk(fm, {"w": squeal_windows(r)})["passages"] for r in rows
+    p_fm = {c: float(np.mean([curve_risk(fm, {"w": cell_onset(r["onset"], r["mu_squeal_range"])})["passages"] for r in rows
                               if r["class"] == c and not r["note"]])) for c in present}
     lo_r, hi_r, mean_r = fs.FM_RANGE
     t.append(f"| line: friction-modifier reduction | all | {lo_r:g}-{hi_r:g} dB(A), mean {mean_r:g} (Eadie & "

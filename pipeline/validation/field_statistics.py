@@ -38,7 +38,7 @@ import numpy as np
 
 from pipeline.config.climate import climate_file, load_climate
 from pipeline.config.curve_inputs import read_curve
-from pipeline.curve.onset import range_text, range_windows
+from pipeline.curve.onset import cell_onset, range_text
 from pipeline.curve.risk import curve_risk, median_level, union, wheel_risk
 from pipeline.store import paths
 from pipeline.study.line_rules import cnossos_penalty, schall03_penalty, schall03_tram
@@ -107,8 +107,7 @@ def level_rows(curve: str, wheel: str) -> list[dict]:
 def curve_row(label: str, name: str, R: float, V: float, cant: float, rows: list[dict], climates: dict) -> dict:
     """One row of the study (module notes) from a curve's verdict rows."""
     mus = {r["wheel"]: onset_value(r["mu_onset"]) for r in rows}
-    wins = {r["wheel"]: range_windows(r["mu_squeal_range"]) if math.isfinite(mus[r["wheel"]]) else mus[r["wheel"]]
-            for r in rows}                                  # where each wheel squeals (risk.curve_risk's windows)
+    wins = {r["wheel"]: cell_onset(mus[r["wheel"]], r["mu_squeal_range"]) for r in rows}   # where each squeals
     first = min(rows, key=lambda r: mus[r["wheel"]] if not math.isnan(mus[r["wheel"]]) else math.inf)
     mu_on = mus[first["wheel"]]
     tables = {w: level_rows(name, w) for w in mus}
